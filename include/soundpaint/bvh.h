@@ -1,0 +1,49 @@
+// Bounding volume hierarchy over a triangle soup: binned SAH build, flattened
+// into the std430 layout of shaders/shared/sp_types.h that the GPU traverses
+// unchanged.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sp_types.h"
+
+namespace sp {
+
+using BvhNode = shader::BvhNode;
+using BvhTriangle = shader::BvhTriangle;
+using HitInfo = shader::HitInfo;
+
+struct BvhBuildSettings {
+  std::uint32_t bins = 16;            // SAH bins per axis and split
+  std::uint32_t max_leaf_size = 4;    // leaves never hold more unless the depth cap forces it
+  float traversal_cost = 1.0f;        // SAH cost of visiting a node, relative to one triangle test
+  std::uint32_t max_depth = SP_BVH_MAX_DEPTH;  // levels including the root; <= SP_BVH_MAX_DEPTH
+};
+
+struct Bvh {
+  std::vector<BvhNode> nodes;          // nodes[0] is the root; siblings adjacent
+  std::vector<BvhTriangle> triangles;  // in leaf order; scene_index maps back
+  std::uint32_t depth = 0;             // levels, root included
+  double build_ms = 0.0;               // wall time of build_bvh
+
+  std::size_t triangle_count() const { return triangles.size(); }
+};
+
+// Builds the BVH. `vertices` holds 3 per triangle; `layers` one per triangle.
+// Degenerate (zero-area) triangles are kept (they never report hits).
+// Precondition: at least one triangle, finite coordinates (load_scene checks).
+Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
+              const BvhBuildSettings& settings = {});
+
+// Closest hit with distance in (tmin, tmax] along unit direction `dir`.
+// Triangles are two-sided; ties go to the lowest scene index.
+HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
+// The same query by testing every triangle; for tests and validation.
+HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
+}  // namespace sp

@@ -1,0 +1,82 @@
+// Simulation configuration (SPEC section 2) and acoustic layer presets.
+// Units: metres, seconds; energies are in units of a source's loudness E0.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "soundpaint/result.h"
+
+namespace sp {
+
+// Acoustic properties of a collision layer (paper: rho_ref, alpha_layer).
+struct LayerProperties {
+  float reflect_probability = 0.8f;  // rho_ref in [0, 1]: chance a hit reflects rather than penetrates
+  float attenuation = 2.0f;          // alpha_layer >= 0: energy lost per metre travelled inside the material
+};
+
+// A sound source (SPEC 1.1). It plays at time t when t >= phase and
+// fmod(t - phase, interval) < duration; the defaults make it play always.
+struct SourceDesc {
+  std::string name;                    // node name for scene sources, "" otherwise
+  glm::vec3 position{0.0f};            // metres, world space
+  glm::vec3 color{1.0f, 1.0f, 1.0f};   // linear RGB, each in [0, 1]
+  std::string category = "sound";      // free text, e.g. "footsteps"
+  float max_distance = 30.0f;          // D_max == R_max, metres, >= 0
+  float loudness = 1.0f;               // E0, initial ray energy, >= 0
+  double duration = 1.0;               // seconds of sound per interval, >= 0
+  double interval = 1.0;               // seconds between sound starts, > 0
+  double phase = 0.0;                  // seconds before the first start, >= 0
+};
+
+enum class BudgetWeighting { Even, Proximity };
+
+// Every key of the JSON configuration, with its default.
+struct Config {
+  float scan_radius = 50.0f;                 // R_scan, metres
+  std::uint32_t ray_budget = 500;            // new rays per step, all sources together
+  std::uint32_t max_indicators = 20000;      // ring-buffer capacity, > 0
+  BudgetWeighting budget_weighting = BudgetWeighting::Even;
+  std::uint32_t max_bounces = 4;             // interactions before a ray dies, <= 64
+  float bounce_energy_loss = 0.2f;           // e_loss in [0, 1]
+  float max_wall_thickness = 0.5f;           // W_max, metres, > 0
+  float min_energy = 0.05f;                  // tau_min
+  float air_attenuation = 0.02f;             // alpha_air, energy per metre
+  float indicator_size = 0.25f;              // metres at E == E0
+  float indicator_lifetime = 1.0f;           // seconds, > 0
+  double dt = 1.0 / 60.0;                    // seconds per step, > 0
+  std::uint32_t seed = 1;                    // random stream seed
+  std::map<std::string, LayerProperties> layers;  // overrides of presets, by layer name
+  std::optional<glm::vec3> listener_position;     // overrides the scene's camera
+  std::vector<SourceDesc> sources;                // added after the scene's sources
+};
+
+// Largest accepted values (inclusive); larger values are configuration errors.
+inline constexpr std::uint32_t kMaxBouncesLimit = 64;
+inline constexpr std::uint32_t kMaxRayBudget = 1u << 24;
+inline constexpr std::uint32_t kMaxIndicatorsLimit = 1u << 24;
+
+// Parses a JSON configuration. `origin` names the text in error messages
+// (usually the file path). Missing keys keep their defaults.
+Result<Config> parse_config(std::string_view json_text, std::string_view origin = "config");
+
+// Reads and parses a configuration file.
+Result<Config> load_config(const std::filesystem::path& path);
+
+// Built-in presets: concrete, brick, wood, glass, metal, carpet, default.
+const std::map<std::string, LayerProperties>& layer_presets();
+
+// The properties used for triangles of `layer_name`: the config's entry of
+// that exact name, else a preset matched case-insensitively with a trailing
+// Blender-style ".NNN" suffix removed ("Wood.001" -> wood), else the config's
+// "default" entry, else the "default" preset.
+LayerProperties resolve_layer(const Config& config, std::string_view layer_name);
+
+}  // namespace sp

@@ -1,0 +1,50 @@
+// Scenes: a glTF 2.0 level flattened into one world-space triangle soup with
+// a layer per triangle, plus its sound sources and listener (SPEC section 3).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "soundpaint/config.h"
+#include "soundpaint/result.h"
+
+namespace sp {
+
+// A perspective camera placed by a node's world transform; looks down -Z of
+// that transform, +Y up (glTF convention).
+struct Camera {
+  glm::mat4 world{1.0f};     // node's world matrix (rotation + translation)
+  float yfov = 0.8f;         // vertical field of view, radians
+  float znear = 0.05f;       // metres
+  float zfar = 1000.0f;      // metres
+  float aspect_ratio = 0.0f; // 0: take it from the image
+  glm::vec3 position() const { return glm::vec3(world[3]); }
+};
+
+struct Scene {
+  std::filesystem::path path;               // where it was loaded from, if from a file
+  std::vector<glm::vec3> vertices;          // 3 per triangle, world space, metres
+  std::vector<std::uint32_t> triangle_layers;  // per triangle, index into layer_names
+  std::vector<std::string> layer_names;     // distinct layer names, in first-use order
+  std::vector<SourceDesc> sources;          // in node order (depth-first over the default scene)
+  std::optional<Camera> camera;             // the first camera node: listener and render camera
+
+  std::size_t triangle_count() const { return triangle_layers.size(); }
+};
+
+// Loads a .gltf or .glb file: every node of the default scene (or scene 0)
+// with its transform composed, every triangle primitive (indexed or not, any
+// index type; mode TRIANGLES, or TRIANGLE_STRIP / TRIANGLE_FAN), layers from
+// node extras.acoustic_layer, else the material name, else "default"; sources
+// from node extras.sound_source and KHR_audio_emitter positional emitters.
+// Errors name the file and the problem: unreadable file, malformed glTF,
+// missing buffer, index out of range, non-finite position, no triangle.
+Result<Scene> load_scene(const std::filesystem::path& path);
+
+}  // namespace sp

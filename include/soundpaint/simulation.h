@@ -1,0 +1,106 @@
+// The simulation: a scene and a configuration resolved into a World, and the
+// Simulator interface that the CPU and GPU backends implement.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "soundpaint/bvh.h"
+#include "soundpaint/config.h"
+#include "soundpaint/result.h"
+#include "soundpaint/scene.h"
+#include "sp_types.h"
+
+namespace sp {
+
+// An indicator (SPEC 1.4). Category is sources[source_id].category.
+using Indicator = shader::Indicator;
+
+// Everything a backend needs, resolved once: geometry, per-layer acoustics,
+// sources (scene's then config's) and the listener.
+struct World {
+  Config config;
+  Bvh bvh;
+  std::vector<std::string> layer_names;
+  std::vector<LayerProperties> layer_properties;  // per layer id
+  std::vector<std::uint32_t> layer_triangle_counts;
+  std::vector<SourceDesc> sources;                // source id == index
+  glm::vec3 listener{0.0f};
+};
+
+// Resolves scene + config. Errors: no listener (neither a camera in the scene
+// nor config.listener), invalid source fields.
+Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings = {});
+
+// Counters of one layer (SPEC 4, --stats).
+struct LayerCounters {
+  std::uint64_t hits = 0;             // every surface hit on this layer
+  std::uint64_t reflections = 0;
+  std::uint64_t penetrations = 0;     // every decision to penetrate (backcast misses included)
+  std::uint64_t backcast_misses = 0;  // penetrations absorbed because thicker than W_max
+};
+
+// Totals over every step run so far.
+struct SimulationStats {
+  std::uint64_t steps = 0;
+  std::uint64_t casts = 0;             // forward casts + backcasts
+  std::uint64_t max_casts_per_step = 0;
+  std::uint64_t rays_emitted = 0;
+  std::uint64_t indicators = 0;        // every indicator created
+  std::vector<LayerCounters> layers;   // per layer id
+};
+
+enum class Backend { Cpu, Gpu };
+
+struct CpuSettings {
+  unsigned threads = 0;  // worker threads; 0: std::thread::hardware_concurrency()
+};
+
+// A running simulation. Not thread-safe: call from one thread at a time.
+class Simulator {
+ public:
+  virtual ~Simulator() = default;
+
+  virtual Backend backend() const = 0;
+  virtual const World& world() const = 0;
+
+  // Runs the next step (registry, distribution, propagation). Step n runs at
+  // time n * dt. Returns an error only for device failures.
+  virtual Result<bool> step() = 0;
+
+  // Steps run so far (== the index of the next step).
+  virtual std::uint64_t steps_run() const = 0;
+
+  // Moves the listener (metres, finite) for the following steps.
+  virtual void set_listener(glm::vec3 position) = 0;
+
+  // Makes `source_id` play for `duration` seconds from the next step on,
+  // regardless of its emission pattern. Error on an unknown id or a negative
+  // or non-finite duration.
+  virtual Result<bool> play(std::uint32_t source_id, double duration) = 0;
+
+  // The indicators created by the last step, in canonical order
+  // (iteration, then ray index). May read back from the device.
+  virtual Result<std::vector<Indicator>> last_step_indicators() = 0;
+
+  // The ring buffer's indicators that are still visible (age below
+  // indicator_lifetime), oldest first.
+  virtual Result<std::vector<Indicator>> live_indicators() = 0;
+
+  // Casts made by the last step (for timing reports).
+  virtual std::uint64_t last_step_casts() const = 0;
+
+  virtual Result<SimulationStats> stats() = 0;
+};
+
+// Creates the multithreaded CPU backend.
+Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSettings& settings = {});
+
+// Opacity of an indicator of the given age (SPEC 1.4).
+float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds);
+
+}  // namespace sp

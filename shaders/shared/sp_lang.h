@@ -1,0 +1,48 @@
+// Language bridge: lets the files in shaders/shared compile both as GLSL 4.60
+// and as C++20, so the GPU and CPU backends run literally the same arithmetic.
+//
+// Rules for shared code (see CONTRIBUTING.md):
+//  - only scalar and vecN/uvecN types, component access by .x/.y/.z or [i];
+//  - parameters that are written use SP_INOUT / SP_OUT;
+//  - variables whose rounding matters for CPU/GPU parity are SP_PRECISE
+//    (GLSL `precise` forbids fused multiply-add; the C++ side is compiled with
+//    -ffp-contract=off for the same reason);
+//  - buffers are reached through SP_BVH_ARGS (C++ pointers, GLSL globals).
+#ifndef SP_LANG_H
+#define SP_LANG_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#define SP_BEGIN_NAMESPACE namespace sp::shader {
+#define SP_END_NAMESPACE }
+#define SP_INLINE inline
+#define SP_INOUT(T) T&
+#define SP_OUT(T) T&
+#define SP_PRECISE
+
+SP_BEGIN_NAMESPACE
+using glm::uvec4;
+using glm::vec3;
+using glm::vec4;
+using uint = std::uint32_t;
+using glm::abs;
+using glm::cross;
+using glm::dot;
+using glm::max;
+using glm::min;
+using glm::sqrt;
+SP_END_NAMESPACE
+
+#else  // GLSL
+
+#define SP_BEGIN_NAMESPACE
+#define SP_END_NAMESPACE
+#define SP_INLINE
+#define SP_INOUT(T) inout T
+#define SP_OUT(T) out T
+#define SP_PRECISE precise
+
+#endif
+#endif  // SP_LANG_H

@@ -1,0 +1,172 @@
+// Closest-hit ray queries over the flattened BVH, shared by GLSL and C++.
+//
+// Triangle test: Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection",
+// JCGT 2(1), 2013 -- two-sided, without its double-precision fallback (an
+// edge exactly hit by both neighbours counts for both, which is still
+// watertight). Box test: slab test with the conservative far-distance scaling
+// of Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013.
+//
+// Buffers: C++ passes `const BvhNode* bvh_nodes, const BvhTriangle*
+// bvh_triangles` through SP_BVH_ARGS_DECL; GLSL declares storage buffers with
+// those same names before including this file and defines SP_BVH_ARGS_DECL
+// empty.
+#ifndef SP_TRAVERSE_H
+#define SP_TRAVERSE_H
+
+#include "sp_types.h"
+
+#ifdef __cplusplus
+#define SP_BVH_ARGS_DECL const BvhNode *bvh_nodes, const BvhTriangle *bvh_triangles,
+#define SP_BVH_ARGS bvh_nodes, bvh_triangles,
+#else
+#define SP_BVH_ARGS_DECL
+#define SP_BVH_ARGS
+#endif
+
+SP_BEGIN_NAMESPACE
+
+// Per-ray constants of the watertight test and the slab test.
+struct RayQuery {
+  vec3 origin;
+  float tmin;  // hits must lie in (tmin, tmax]
+  vec3 dir;
+  float tmax;
+  vec3 inv_dir;
+  uint kx;
+  vec3 shear;  // Sx, Sy, Sz of Woop et al.
+  uint ky;
+  uint kz;
+};
+
+SP_INLINE float sp_safe_inverse(float d) {
+  // Avoids 0 * inf = NaN in the slab test for axis-parallel rays.
+  SP_PRECISE float safe = abs(d) > 1.0e-20f ? d : (d < 0.0f ? -1.0e-20f : 1.0e-20f);
+  return 1.0f / safe;
+}
+
+SP_INLINE RayQuery sp_make_query(vec3 origin, vec3 dir, float tmin, float tmax) {
+  RayQuery q;
+  q.origin = origin;
+  q.dir = dir;
+  q.tmin = tmin;
+  q.tmax = tmax;
+  q.inv_dir = vec3(sp_safe_inverse(dir.x), sp_safe_inverse(dir.y), sp_safe_inverse(dir.z));
+  vec3 a = abs(dir);
+  uint kz = (a.x > a.y) ? (a.x > a.z ? 0u : 2u) : (a.y > a.z ? 1u : 2u);
+  uint kx = (kz + 1u) % 3u;
+  uint ky = (kx + 1u) % 3u;
+  if (dir[kz] < 0.0f) {  // keep the winding, as Woop et al. do
+    uint tmp = kx;
+    kx = ky;
+    ky = tmp;
+  }
+  q.kx = kx;
+  q.ky = ky;
+  q.kz = kz;
+  q.shear = vec3(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0f / dir[kz]);
+  return q;
+}
+
+// Returns the hit distance, or SP_FAR when the ray misses the triangle's plane
+// region. The caller applies the (tmin, tmax] window.
+SP_INLINE float sp_intersect_triangle(RayQuery q, vec3 v0, vec3 v1, vec3 v2) {
+  SP_PRECISE vec3 a = v0 - q.origin;
+  SP_PRECISE vec3 b = v1 - q.origin;
+  SP_PRECISE vec3 c = v2 - q.origin;
+  SP_PRECISE float ax = a[q.kx] - q.shear.x * a[q.kz];
+  SP_PRECISE float ay = a[q.ky] - q.shear.y * a[q.kz];
+  SP_PRECISE float bx = b[q.kx] - q.shear.x * b[q.kz];
+  SP_PRECISE float by = b[q.ky] - q.shear.y * b[q.kz];
+  SP_PRECISE float cx = c[q.kx] - q.shear.x * c[q.kz];
+  SP_PRECISE float cy = c[q.ky] - q.shear.y * c[q.kz];
+  SP_PRECISE float u = cx * by - cy * bx;
+  SP_PRECISE float v = ax * cy - ay * cx;
+  SP_PRECISE float w = bx * ay - by * ax;
+  if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return SP_FAR;
+  SP_PRECISE float det = u + v + w;
+  if (det == 0.0f) return SP_FAR;
+  SP_PRECISE float az = q.shear.z * a[q.kz];
+  SP_PRECISE float bz = q.shear.z * b[q.kz];
+  SP_PRECISE float cz = q.shear.z * c[q.kz];
+  SP_PRECISE float t_scaled = u * az + v * bz + w * cz;
+  return t_scaled / det;
+}
+
+// Entry distance of the ray into the box, or SP_FAR when it misses the box
+// within [tmin, tmax].
+SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
+  SP_PRECISE vec3 t0 = (bmin - q.origin) * q.inv_dir;
+  SP_PRECISE vec3 t1 = (bmax - q.origin) * q.inv_dir;
+  vec3 tlo = min(t0, t1);
+  vec3 thi = max(t0, t1);
+  float tnear = max(max(tlo.x, tlo.y), max(tlo.z, q.tmin));
+  // 1 + 2 * gamma(3): keeps the test conservative under rounding (Ize 2013).
+  float tfar = min(min(thi.x, thi.y), min(thi.z, tmax)) * 1.0000004f;
+  return tnear <= tfar ? tnear : SP_FAR;
+}
+
+// Is (t, scene_index) a better hit than (best_t, best_scene)? Closest wins;
+// equal distances go to the triangle first in scene order (SPEC 1.3).
+SP_INLINE bool sp_better_hit(float t, uint scene_index, float best_t, uint best_scene) {
+  return t < best_t || (t == best_t && scene_index < best_scene);
+}
+
+// Closest hit with distance in (tmin, tmax]. Two-sided triangles.
+SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmin, float tmax) {
+  RayQuery q = sp_make_query(origin, dir, tmin, tmax);
+  HitInfo best;
+  best.t = tmax;
+  best.triangle = SP_INVALID;
+  uint best_scene = SP_INVALID;  // lets a hit at exactly tmax through
+
+  uint stack[SP_BVH_MAX_DEPTH];
+  uint stack_size = 0u;
+  uint node_index = 0u;
+  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, best.t) == SP_FAR) return best;
+
+  for (;;) {
+    BvhNode node = bvh_nodes[node_index];
+    if (node.count > 0u) {
+      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
+        BvhTriangle tri = bvh_triangles[i];
+        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+        if (t > q.tmin && t <= q.tmax && sp_better_hit(t, tri.scene_index, best.t, best_scene)) {
+          best.t = t;
+          best.triangle = i;
+          best_scene = tri.scene_index;
+        }
+      }
+    } else {
+      uint left = node.left_or_first;
+      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, best.t);
+      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, best.t);
+      if (t_left != SP_FAR || t_right != SP_FAR) {
+        if (t_left == SP_FAR) {
+          node_index = left + 1u;
+        } else if (t_right == SP_FAR) {
+          node_index = left;
+        } else {
+          // Visit the nearer child first; the farther one waits on the stack.
+          bool left_first = t_left <= t_right;
+          node_index = left_first ? left : left + 1u;
+          stack[stack_size] = left_first ? left + 1u : left;
+          stack_size += 1u;
+        }
+        continue;
+      }
+    }
+    // Pop, skipping nodes that a closer hit has since ruled out.
+    bool found = false;
+    while (stack_size > 0u && !found) {
+      stack_size -= 1u;
+      node_index = stack[stack_size];
+      found = sp_intersect_box(q, bvh_nodes[node_index].bmin, bvh_nodes[node_index].bmax, best.t) != SP_FAR;
+    }
+    if (!found) break;
+  }
+  return best;
+}
+
+SP_END_NAMESPACE
+
+#endif  // SP_TRAVERSE_H
