@@ -64,19 +64,24 @@ inline constexpr std::uint32_t kMaxRayBudget = 1u << 24;
 inline constexpr std::uint32_t kMaxIndicatorsLimit = 1u << 24;
 
 // Parses a JSON configuration. `origin` names the text in error messages
-// (usually the file path). Missing keys keep their defaults.
+// (usually the file path). Missing keys keep their defaults. Counts
+// (ray_budget, max_indicators, max_bounces, seed) must be JSON integers
+// (5.0 is rejected); numbers stored as float must fit a float. A layer entry
+// that omits a field takes it from what the layer would get without the
+// entry. Errors: ErrorCode::InvalidConfig naming the key path.
 Result<Config> parse_config(std::string_view json_text, std::string_view origin = "config");
 
-// Reads and parses a configuration file.
+// Reads and parses a configuration file (ErrorCode::Io if unreadable).
 Result<Config> load_config(const std::filesystem::path& path);
 
 // Built-in presets: concrete, brick, wood, glass, metal, carpet, default.
 const std::map<std::string, LayerProperties>& layer_presets();
 
-// The properties used for triangles of `layer_name`: the config's entry of
-// that exact name, else a preset matched case-insensitively with a trailing
-// Blender-style ".NNN" suffix removed ("Wood.001" -> wood), else the config's
-// "default" entry, else the "default" preset.
+// The properties used for triangles of `layer_name`. Names are compared
+// exactly first, then normalised (ASCII lower case, one trailing Blender-style
+// ".NNN" removed: "Wood.001" -> "wood"). Order: the config's entry of that
+// name (exact, then normalised), else the preset of the normalised name, else
+// the config's "default" entry, else the "default" preset.
 LayerProperties resolve_layer(const Config& config, std::string_view layer_name);
 
 }  // namespace sp
