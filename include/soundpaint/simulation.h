@@ -75,8 +75,8 @@ class Simulator {
   // Steps run so far (== the index of the next step).
   virtual std::uint64_t steps_run() const = 0;
 
-  // Moves the listener (metres, finite) for the following steps.
-  virtual void set_listener(glm::vec3 position) = 0;
+  // Moves the listener (metres) for the following steps. Error if not finite.
+  virtual Result<bool> set_listener(glm::vec3 position) = 0;
 
   // Makes `source_id` play for `duration` seconds from the next step on,
   // regardless of its emission pattern. Error on an unknown id or a negative

@@ -1,0 +1,33 @@
+// Traces one ray of the CPU backend from emission to death. Every live ray
+// gets one cast per wavefront iteration, and each ray's path depends on its
+// own state alone, so tracing ray by ray gives exactly the wavefront result;
+// indicators carry their iteration so the caller can list them in the
+// canonical (iteration, ray) order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "soundpaint/simulation.h"
+
+namespace sp {
+
+// Per-worker counters, summed after the step (integer sums: order-free).
+struct TraceCounters {
+  std::uint64_t casts = 0;
+  std::vector<LayerCounters> layers;
+};
+
+struct TraceContext {
+  const Bvh* bvh = nullptr;
+  std::span<const shader::LayerAcoustics> layers;
+  std::span<const shader::StepSource> sources;
+  shader::SimParams params{};
+};
+
+// Traces `ray` (already emitted) to its end, appending its indicators.
+void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<Indicator>& indicators,
+               TraceCounters& counters);
+
+}  // namespace sp

@@ -1,0 +1,101 @@
+#include "sim/step_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace sp {
+
+bool source_pattern_plays(const SourceDesc& source, double t) {
+  if (t < source.phase) return false;
+  return std::fmod(t - source.phase, source.interval) < source.duration;
+}
+
+std::vector<std::uint32_t> split_budget(std::uint32_t budget, const std::vector<double>& weights) {
+  std::vector<std::uint32_t> counts(weights.size(), 0);
+  if (weights.empty()) return counts;
+  double total = 0.0;
+  for (double w : weights) total += w;
+  std::uint64_t assigned = 0;
+  if (total > 0.0) {
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+      double share = std::floor(static_cast<double>(budget) * weights[i] / total);
+      counts[i] = static_cast<std::uint32_t>(std::min(share, static_cast<double>(budget)));
+      assigned += counts[i];
+    }
+  } else {
+    for (auto& c : counts) c = budget / static_cast<std::uint32_t>(weights.size());
+    assigned = static_cast<std::uint64_t>(counts[0]) * weights.size();
+  }
+  // Rounding of budget * w / total can push a floor one over; take it back
+  // from the highest indices so the split never exceeds the budget.
+  for (std::size_t i = counts.size(); assigned > budget && i-- > 0;) {
+    if (counts[i] > 0) {
+      counts[i] -= 1;
+      assigned -= 1;
+      i += 1;
+    }
+  }
+  // Floors lose less than one ray per source, so one pass over the lowest
+  // indices always places the whole remainder.
+  std::uint64_t remainder = budget > assigned ? budget - assigned : 0;
+  for (std::size_t i = 0; remainder > 0; i = (i + 1) % counts.size(), --remainder) counts[i] += 1;
+  return counts;
+}
+
+StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
+                   const std::vector<PlayWindow>& play_windows) {
+  const Config& config = world.config;
+  const double t = static_cast<double>(step) * config.dt;
+  StepPlan plan;
+  std::vector<double> weights;
+  for (std::uint32_t id = 0; id < world.sources.size(); ++id) {
+    const SourceDesc& source = world.sources[id];
+    const PlayWindow& window = play_windows[id];
+    bool playing = source_pattern_plays(source, t) || (t >= window.start && t < window.end);
+    if (!playing) continue;
+    double d_ls = static_cast<double>(glm::distance(listener, source.position));
+    if (d_ls > config.scan_radius || d_ls > source.max_distance) continue;
+    double proximity = source.max_distance > 0.0f ? std::max(0.0, 1.0 - d_ls / source.max_distance) : 0.0;
+
+    shader::StepSource entry{};
+    entry.position = source.position;
+    entry.max_distance = source.max_distance;
+    entry.color = source.color;
+    entry.loudness = source.loudness;
+    entry.intensity = static_cast<float>(proximity);
+    entry.source_id = id;
+    plan.sources.push_back(entry);
+    weights.push_back(config.budget_weighting == BudgetWeighting::Proximity ? proximity : 1.0);
+  }
+  std::vector<std::uint32_t> counts = split_budget(config.ray_budget, weights);
+  for (std::size_t i = 0; i < plan.sources.size(); ++i) {
+    plan.sources[i].first_ray = plan.total_rays;
+    plan.sources[i].ray_count = counts[i];
+    plan.total_rays += counts[i];
+  }
+  return plan;
+}
+
+shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
+  shader::SimParams p{};
+  p.min_energy = config.min_energy;
+  p.air_attenuation = config.air_attenuation;
+  p.bounce_energy_loss = config.bounce_energy_loss;
+  p.max_wall_thickness = config.max_wall_thickness;
+  p.indicator_size = config.indicator_size;
+  p.max_bounces = config.max_bounces;
+  p.seed = config.seed;
+  // The RNG key is 32-bit; steps beyond 2^32 (two years at 60 Hz) wrap.
+  p.step = static_cast<std::uint32_t>(step);
+  return p;
+}
+
+std::vector<shader::LayerAcoustics> make_layer_table(const World& world) {
+  std::vector<shader::LayerAcoustics> table;
+  for (const LayerProperties& props : world.layer_properties)
+    table.push_back({props.reflect_probability, props.attenuation});
+  return table;
+}
+
+}  // namespace sp

@@ -1,0 +1,43 @@
+// Source registry and ray distribution (SPEC 1.1-1.2): which sources emit in
+// a step and how many rays each gets. Both backends use this same table.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "soundpaint/simulation.h"
+
+namespace sp {
+
+// A host-triggered play window [start, end) in seconds (Simulator::play).
+struct PlayWindow {
+  double start = 0.0;
+  double end = 0.0;
+};
+
+struct StepPlan {
+  std::vector<shader::StepSource> sources;  // active sources, ascending id
+  std::uint32_t total_rays = 0;             // sum of ray_count
+};
+
+// Is the source playing at time t by its emission pattern?
+bool source_pattern_plays(const SourceDesc& source, double t);
+
+// Active sources of step `step` (time step * dt) and their ray counts.
+// `play_windows` has one entry per source (end <= start: none).
+StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
+                   const std::vector<PlayWindow>& play_windows);
+
+// Splits `budget` rays by weight: floor of the proportional share, then the
+// remainder one each to the lowest indices. All weights zero: even split.
+std::vector<std::uint32_t> split_budget(std::uint32_t budget, const std::vector<double>& weights);
+
+// The ray model's parameters for one step.
+shader::SimParams make_sim_params(const Config& config, std::uint64_t step);
+
+// Per layer id, the acoustics table the ray model reads.
+std::vector<shader::LayerAcoustics> make_layer_table(const World& world);
+
+}  // namespace sp

@@ -1,0 +1,69 @@
+#include "sim/thread_pool.h"
+
+#include <algorithm>
+
+namespace sp {
+
+ThreadPool::ThreadPool(unsigned threads) {
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  for (unsigned i = 1; i < threads; ++i) workers_.emplace_back([this, i] { worker_loop(i); });
+}
+
+ThreadPool::~ThreadPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  for (auto& worker : workers_) worker.join();
+}
+
+void ThreadPool::run_chunks(unsigned worker) {
+  for (;;) {
+    std::size_t first = next_.fetch_add(grain_, std::memory_order_relaxed);
+    if (first >= count_) return;
+    (*body_)(first, std::min(count_, first + grain_), worker);
+  }
+}
+
+void ThreadPool::worker_loop(unsigned worker) {
+  std::uint64_t seen = 0;
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+      if (stopping_) return;
+      seen = generation_;
+    }
+    run_chunks(worker);
+    {
+      std::lock_guard lock(mutex_);
+      if (--busy_workers_ == 0) done_.notify_one();
+    }
+  }
+}
+
+void ThreadPool::parallel_for(std::size_t count, std::size_t grain, const Body& body) {
+  if (count == 0) return;
+  grain = std::max<std::size_t>(1, grain);
+  if (workers_.empty() || count <= grain) {  // not worth waking anyone
+    body(0, count, 0);
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    body_ = &body;
+    count_ = count;
+    grain_ = grain;
+    next_.store(0, std::memory_order_relaxed);
+    busy_workers_ = static_cast<unsigned>(workers_.size());
+    ++generation_;
+  }
+  wake_.notify_all();
+  run_chunks(0);
+  std::unique_lock lock(mutex_);
+  done_.wait(lock, [&] { return busy_workers_ == 0; });
+  body_ = nullptr;
+}
+
+}  // namespace sp

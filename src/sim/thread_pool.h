@@ -1,0 +1,51 @@
+// A fork-join pool for the CPU backend: one parallel_for per step, the
+// calling thread working alongside the workers.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace sp {
+
+class ThreadPool {
+ public:
+  // `threads` counts the calling thread; 0 means hardware_concurrency().
+  explicit ThreadPool(unsigned threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  unsigned size() const { return static_cast<unsigned>(workers_.size()) + 1; }
+
+  using Body = std::function<void(std::size_t first, std::size_t last, unsigned worker)>;
+
+  // Calls body over [0, count) in chunks of `grain` items; `worker` is in
+  // [0, size()) and no two concurrent calls share one. Returns when all
+  // chunks are done. Chunks are claimed dynamically, so which worker runs
+  // which chunk varies: bodies must write to per-chunk or per-worker storage.
+  void parallel_for(std::size_t count, std::size_t grain, const Body& body);
+
+ private:
+  void worker_loop(unsigned worker);
+  void run_chunks(unsigned worker);
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  std::uint64_t generation_ = 0;
+  unsigned busy_workers_ = 0;
+  bool stopping_ = false;
+
+  const Body* body_ = nullptr;
+  std::size_t count_ = 0;
+  std::size_t grain_ = 1;
+  std::atomic<std::size_t> next_{0};
+};
+
+}  // namespace sp

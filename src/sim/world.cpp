@@ -1,0 +1,101 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "soundpaint/simulation.h"
+
+namespace sp {
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void check_scene(const Scene& scene) {
+  const std::string name = scene.path.empty() ? std::string("scene") : scene.path.string();
+  auto fail = [&](const std::string& what) { throw Exception(ErrorCode::InvalidScene, name + ": " + what); };
+  if (scene.triangle_count() == 0) fail("no triangles");
+  if (scene.vertices.size() != 3 * scene.triangle_count())
+    fail("vertices (" + std::to_string(scene.vertices.size()) + ") must be 3 per triangle (" +
+         std::to_string(scene.triangle_count()) + " triangles)");
+  for (std::size_t i = 0; i < scene.triangle_count(); ++i)
+    if (scene.triangle_layers[i] >= scene.layer_names.size())
+      fail("triangle " + std::to_string(i) + " has layer id " + std::to_string(scene.triangle_layers[i]) +
+           " but there are only " + std::to_string(scene.layer_names.size()) + " layers");
+  for (std::size_t i = 0; i < scene.vertices.size(); ++i)
+    if (!finite(scene.vertices[i])) fail("vertex " + std::to_string(i) + " is not finite");
+}
+
+void check_source(const SourceDesc& s, std::size_t id) {
+  auto fail = [&](const std::string& what) {
+    throw Exception(ErrorCode::InvalidArgument, "source " + std::to_string(id) + ": " + what);
+  };
+  if (!finite(s.position)) fail("position is not finite");
+  if (!finite(s.color)) fail("color is not finite");
+  if (!(s.max_distance >= 0.0f) || !std::isfinite(s.max_distance)) fail("max_distance must be finite and >= 0");
+  if (!(s.loudness >= 0.0f) || !std::isfinite(s.loudness)) fail("loudness must be finite and >= 0");
+  if (!(s.interval > 0.0) || !std::isfinite(s.interval)) fail("interval must be finite and > 0");
+  if (!(s.duration >= 0.0) || !std::isfinite(s.duration)) fail("duration must be finite and >= 0");
+  if (!(s.phase >= 0.0) || !std::isfinite(s.phase)) fail("phase must be finite and >= 0");
+}
+
+// Guards API users who fill Config by hand; parse_config checks the same.
+void check_config(const Config& c) {
+  auto fail = [](const std::string& what) { throw Exception(ErrorCode::InvalidConfig, what); };
+  auto non_negative = [&](float v, const char* key) {
+    if (!(v >= 0.0f) || !std::isfinite(v)) fail(std::string(key) + " must be finite and >= 0");
+  };
+  non_negative(c.scan_radius, "scan_radius");
+  non_negative(c.min_energy, "min_energy");
+  non_negative(c.air_attenuation, "air_attenuation");
+  non_negative(c.indicator_size, "indicator_size");
+  if (!(c.max_wall_thickness > 0.0f) || !std::isfinite(c.max_wall_thickness)) fail("max_wall_thickness must be > 0");
+  if (!(c.indicator_lifetime > 0.0f) || !std::isfinite(c.indicator_lifetime)) fail("indicator_lifetime must be > 0");
+  if (!(c.dt > 0.0) || !std::isfinite(c.dt)) fail("dt must be > 0");
+  if (!(c.bounce_energy_loss >= 0.0f && c.bounce_energy_loss <= 1.0f)) fail("bounce_energy_loss must be in [0, 1]");
+  if (c.max_bounces > kMaxBouncesLimit) fail("max_bounces must be <= " + std::to_string(kMaxBouncesLimit));
+  if (c.ray_budget > kMaxRayBudget) fail("ray_budget must be <= " + std::to_string(kMaxRayBudget));
+  if (c.max_indicators == 0 || c.max_indicators > kMaxIndicatorsLimit)
+    fail("max_indicators must be in [1, " + std::to_string(kMaxIndicatorsLimit) + "]");
+  for (const auto& [name, layer] : c.layers) {
+    if (!(layer.reflect_probability >= 0.0f && layer.reflect_probability <= 1.0f))
+      fail("layers." + name + ".reflect_probability must be in [0, 1]");
+    if (!(layer.attenuation >= 0.0f) || !std::isfinite(layer.attenuation))
+      fail("layers." + name + ".attenuation must be finite and >= 0");
+  }
+  if (c.listener_position && !finite(*c.listener_position)) fail("listener.position is not finite");
+}
+
+}  // namespace
+
+Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings) {
+  return capture_errors([&]() -> World {
+    check_scene(scene);
+    check_config(config);
+    World world;
+    world.config = config;
+    world.sources = scene.sources;
+    world.sources.insert(world.sources.end(), config.sources.begin(), config.sources.end());
+    for (std::size_t id = 0; id < world.sources.size(); ++id) check_source(world.sources[id], id);
+    if (config.listener_position) {
+      world.listener = *config.listener_position;
+    } else if (scene.camera) {
+      world.listener = scene.camera->position();
+    } else {
+      throw Exception(ErrorCode::InvalidArgument,
+                      "no listener: the scene has no camera node and the config sets no listener.position");
+    }
+    world.layer_names = scene.layer_names;
+    world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
+    for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
+    for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
+    world.bvh = build_bvh(scene.vertices, scene.triangle_layers, bvh_settings);
+    return world;
+  });
+}
+
+float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds) {
+  if (!(lifetime_seconds > 0.0f)) return 0.0f;
+  double fade = std::clamp(1.0 - age_seconds / static_cast<double>(lifetime_seconds), 0.0, 1.0);
+  return static_cast<float>(static_cast<double>(indicator.intensity) * fade);
+}
+
+}  // namespace sp

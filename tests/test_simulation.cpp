@@ -1,0 +1,309 @@
+// The CPU simulator end to end: registry, distribution, statistics,
+// determinism. Expectations are derived by hand from SPEC section 1.
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "sim/indicator_ring.h"
+#include "sim/step_plan.h"
+#include "soundpaint/simulation.h"
+#include "sp_random.h"
+#include "support/scene_builder.h"
+
+namespace sp {
+namespace {
+
+struct SimRun {
+  std::vector<Indicator> indicators;
+  SimulationStats stats;
+};
+
+SimRun simulate(const Scene& scene, const Config& config, std::uint64_t steps, unsigned threads = 2) {
+  auto sim = create_cpu_simulator(make_world(scene, config).value(), CpuSettings{threads}).value();
+  SimRun run;
+  for (std::uint64_t n = 0; n < steps; ++n) {
+    EXPECT_TRUE(sim->step().ok());
+    auto step = sim->last_step_indicators().value();
+    run.indicators.insert(run.indicators.end(), step.begin(), step.end());
+  }
+  run.stats = sim->stats().value();
+  return run;
+}
+
+// A 6 x 3 x 5 m room with 0.3 m walls and one source at its centre.
+Scene closed_room() {
+  Scene scene;
+  test::add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
+  scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
+  return scene;
+}
+
+Config quiet_config() {
+  Config c;
+  c.listener_position = glm::vec3(0, 1.5f, 0);
+  c.ray_budget = 200;
+  c.min_energy = 0.001f;
+  return c;
+}
+
+TEST(Simulation, ClosedMirrorRoomLeaksNoRayAndLosesOnlyAirEnergy) {
+  Config config = quiet_config();
+  config.layers["concrete"] = {1.0f, 5.0f};
+  config.bounce_energy_loss = 0.0f;
+  config.air_attenuation = 0.01f;
+  config.max_bounces = 6;
+  SimRun run = simulate(closed_room(), config, 3);
+  // Every ray reflects until its 7th hit (max_bounces + 1): no cast misses.
+  EXPECT_EQ(run.stats.rays_emitted, 3u * 200u);
+  EXPECT_EQ(run.stats.casts, run.stats.rays_emitted * 7);
+  EXPECT_EQ(run.stats.layers[0].hits, run.stats.casts);
+  EXPECT_EQ(run.stats.layers[0].penetrations, 0u);
+  ASSERT_EQ(run.indicators.size(), run.stats.casts);
+  for (const Indicator& ind : run.indicators) {
+    EXPECT_NEAR(ind.energy, 1.0f - 0.01f * ind.path_length, 2e-5f);
+    EXPECT_GE(ind.position.x, -3.001f);
+    EXPECT_LE(ind.position.x, 3.001f);
+    EXPECT_GE(ind.position.y, -0.001f);
+    EXPECT_LE(ind.position.y, 3.001f);
+  }
+}
+
+TEST(Simulation, BounceLossAloneGivesGeometricEnergy) {
+  Config config = quiet_config();
+  config.layers["concrete"] = {1.0f, 0.0f};
+  config.bounce_energy_loss = 0.25f;
+  config.air_attenuation = 0.0f;
+  config.max_bounces = 5;
+  SimRun run = simulate(closed_room(), config, 1);
+  ASSERT_FALSE(run.indicators.empty());
+  for (const Indicator& ind : run.indicators)
+    EXPECT_NEAR(ind.energy, std::pow(0.75, ind.bounces), 1e-6) << ind.bounces;
+}
+
+TEST(Simulation, ReflectionFractionMatchesReflectProbability) {
+  Config config = quiet_config();
+  config.layers["concrete"] = {0.3f, 0.0f};
+  config.max_wall_thickness = 0.1f;  // walls are 0.3 m: every penetration is absorbed
+  config.air_attenuation = 0.0f;
+  config.bounce_energy_loss = 0.0f;
+  config.max_bounces = 10;
+  config.ray_budget = 5000;
+  SimRun run = simulate(closed_room(), config, 2);
+  const auto& layer = run.stats.layers[0];
+  double decisions = double(layer.reflections + layer.penetrations);
+  ASSERT_GT(decisions, 5000.0);
+  double fraction = double(layer.reflections) / decisions;
+  double sigma = std::sqrt(0.3 * 0.7 / decisions);
+  EXPECT_NEAR(fraction, 0.3, 4 * sigma);
+  // Slabs meet at the room's edges, so a ray entering near an edge can find
+  // the neighbouring slab's face within W_max: most, not all, are absorbed.
+  EXPECT_LE(layer.backcast_misses, layer.penetrations);
+  EXPECT_GT(layer.backcast_misses, layer.penetrations * 9 / 10);
+}
+
+TEST(Simulation, SourceBeyondScanRadiusEmitsNothing) {
+  Config config = quiet_config();
+  config.scan_radius = 1.0f;
+  config.listener_position = glm::vec3(-2.5f, 1.5f, 0.2f);  // 3 m from the source
+  SimRun run = simulate(closed_room(), config, 5);
+  EXPECT_EQ(run.stats.rays_emitted, 0u);
+  EXPECT_EQ(run.stats.casts, 0u);
+  EXPECT_TRUE(run.indicators.empty());
+  config.scan_radius = 3.5f;
+  EXPECT_EQ(simulate(closed_room(), config, 5).stats.rays_emitted, 5u * 200u);
+}
+
+TEST(Simulation, SourceBeyondItsMaxDistanceFromListenerEmitsNothing) {
+  Scene scene = closed_room();
+  scene.sources[0].max_distance = 2.0f;
+  Config config = quiet_config();
+  config.listener_position = glm::vec3(-2.5f, 1.5f, 0.2f);  // 3 m away
+  EXPECT_EQ(simulate(scene, config, 2).stats.rays_emitted, 0u);
+}
+
+TEST(Simulation, IntensityAndSizeFollowTheFormulas) {
+  Scene scene = closed_room();
+  scene.sources[0].max_distance = 10.0f;
+  scene.sources[0].loudness = 2.0f;
+  Config config = quiet_config();
+  config.listener_position = glm::vec3(-2.5f, 1.5f, 0.2f);  // d_ls = 3 m
+  config.indicator_size = 0.4f;
+  SimRun run = simulate(scene, config, 1);
+  ASSERT_FALSE(run.indicators.empty());
+  for (const Indicator& ind : run.indicators) {
+    EXPECT_FLOAT_EQ(ind.intensity, 0.7f);                     // 1 - 3 / 10
+    EXPECT_NEAR(ind.size, 0.4f * ind.energy / 2.0f, 1e-6f);  // size * E / E0
+    EXPECT_FLOAT_EQ(ind.color.g, 0.5f);
+  }
+  // opacity = I * (1 - age / lifetime)
+  EXPECT_FLOAT_EQ(indicator_opacity(run.indicators[0], 0.25, 1.0f), 0.7f * 0.75f);
+  EXPECT_FLOAT_EQ(indicator_opacity(run.indicators[0], 2.0, 1.0f), 0.0f);
+}
+
+TEST(StepPlan, EvenSplitGivesRemainderToLowestIds) {
+  EXPECT_EQ(split_budget(10, {1, 1, 1}), (std::vector<std::uint32_t>{4, 3, 3}));
+  EXPECT_EQ(split_budget(11, {1, 1, 1}), (std::vector<std::uint32_t>{4, 4, 3}));
+  EXPECT_EQ(split_budget(2, {1, 1, 1, 1}), (std::vector<std::uint32_t>{1, 1, 0, 0}));
+  EXPECT_EQ(split_budget(0, {1, 1}), (std::vector<std::uint32_t>{0, 0}));
+  EXPECT_TRUE(split_budget(5, {}).empty());
+}
+
+TEST(StepPlan, ProximitySplitIsProportionalToOneMinusDistanceOverRange) {
+  // weights 0.75 and 0.25 of 100 rays -> 75 and 25
+  EXPECT_EQ(split_budget(100, {0.75, 0.25}), (std::vector<std::uint32_t>{75, 25}));
+  // 10 rays by weights 0.5, 0.3, 0.2 -> floors 5, 3, 2
+  EXPECT_EQ(split_budget(10, {0.5, 0.3, 0.2}), (std::vector<std::uint32_t>{5, 3, 2}));
+  // all weights zero -> even
+  EXPECT_EQ(split_budget(3, {0, 0}), (std::vector<std::uint32_t>{2, 1}));
+}
+
+TEST(StepPlan, RegistryAppliesPatternRadiusAndWeighting) {
+  Scene scene = closed_room();
+  scene.sources.clear();
+  SourceDesc near = test::source_at({1, 1.5f, 0}, 10.0f);   // d_ls 1 -> weight 0.9
+  SourceDesc far = test::source_at({-2, 1.5f, 0}, 10.0f);   // d_ls 2 -> weight 0.8
+  SourceDesc pulsed = test::source_at({0, 1.5f, 1}, 10.0f);
+  // binary fractions, so the pattern's arithmetic is exact
+  pulsed.interval = 0.25;
+  pulsed.duration = 0.125;
+  pulsed.phase = 0.0625;
+  scene.sources = {near, far, pulsed};
+  Config config = quiet_config();
+  config.listener_position = glm::vec3(0, 1.5f, 0);
+  config.ray_budget = 17;
+  config.budget_weighting = BudgetWeighting::Proximity;
+  config.dt = 0.0625;
+  World world = make_world(scene, config).value();
+  std::vector<PlayWindow> none(3);
+  // step 0 (t = 0): the pulsed source waits for its phase
+  StepPlan plan = plan_step(world, 0, world.listener, none);
+  ASSERT_EQ(plan.sources.size(), 2u);
+  EXPECT_EQ(plan.sources[0].ray_count + plan.sources[1].ray_count, 17u);
+  EXPECT_EQ(plan.sources[0].ray_count, 9u);  // floor(17*.9/1.7) = 9, floor(17*.8/1.7) = 8
+  EXPECT_EQ(plan.sources[1].first_ray, 9u);
+  EXPECT_FLOAT_EQ(plan.sources[1].intensity, 0.8f);
+  // t = 0.0625: plays (0 < 0.125); t = 0.1875: 0.125 is not < 0.125;
+  // t = 0.3125: the next period starts
+  EXPECT_EQ(plan_step(world, 1, world.listener, none).sources.size(), 3u);
+  EXPECT_EQ(plan_step(world, 2, world.listener, none).sources.size(), 3u);
+  EXPECT_EQ(plan_step(world, 3, world.listener, none).sources.size(), 2u);
+  EXPECT_EQ(plan_step(world, 5, world.listener, none).sources.size(), 3u);
+  // a host play() window makes it play regardless of the pattern
+  std::vector<PlayWindow> played(3);
+  played[2] = {0.0, 0.01};
+  EXPECT_EQ(plan_step(world, 0, world.listener, played).sources.size(), 3u);
+}
+
+TEST(Simulation, SameSeedSameIndicatorsWhateverTheThreadCount) {
+  Config config = quiet_config();
+  config.ray_budget = 500;
+  config.layers["concrete"] = {0.6f, 1.0f};
+  config.max_wall_thickness = 0.5f;
+  auto key = [](const SimRun& run) {
+    std::vector<std::tuple<std::uint32_t, std::uint32_t, float, float, float, float>> k;
+    for (const auto& i : run.indicators) k.emplace_back(i.step, i.ray_index, i.position.x, i.position.y, i.position.z, i.energy);
+    return k;
+  };
+  SimRun one = simulate(closed_room(), config, 4, 1);
+  SimRun four = simulate(closed_room(), config, 4, 4);
+  ASSERT_FALSE(one.indicators.empty());
+  EXPECT_EQ(key(one), key(four));
+  EXPECT_EQ(one.stats.casts, four.stats.casts);
+  config.seed = 2;
+  EXPECT_NE(key(one), key(simulate(closed_room(), config, 4, 4)));
+}
+
+TEST(Simulation, IndicatorsComeInCanonicalOrder) {
+  Config config = quiet_config();
+  SimRun run = simulate(closed_room(), config, 2, 3);
+  for (std::size_t k = 1; k < run.indicators.size(); ++k) {
+    const auto& a = run.indicators[k - 1];
+    const auto& b = run.indicators[k];
+    EXPECT_LE(std::tie(a.step, a.iteration, a.ray_index), std::tie(b.step, b.iteration, b.ray_index));
+  }
+}
+
+TEST(Random, EmissionDirectionsAreUnitAndUniform) {
+  int octants[8] = {};
+  glm::dvec3 mean(0.0);
+  const int n = 80000;
+  for (int i = 0; i < n; ++i) {
+    glm::vec3 d = shader::sp_emission_direction(7u, 3u, static_cast<std::uint32_t>(i));
+    ASSERT_NEAR(glm::length(d), 1.0f, 1e-6f);
+    octants[(d.x > 0) + 2 * (d.y > 0) + 4 * (d.z > 0)] += 1;
+    mean += glm::dvec3(d);
+  }
+  for (int count : octants) EXPECT_NEAR(count, n / 8, 5 * std::sqrt(n / 8.0));
+  EXPECT_LT(glm::length(mean / double(n)), 0.02);
+}
+
+TEST(Random, DecisionsAreUniformAndKeyedByAllInputs) {
+  int below_third = 0;
+  const int n = 60000;
+  for (int i = 0; i < n; ++i) below_third += shader::sp_decision_random(1u, 2u, static_cast<std::uint32_t>(i), 0u) < 1.0f / 3.0f;
+  EXPECT_NEAR(below_third, n / 3, 5 * std::sqrt(n * 2.0 / 9.0));
+  float base = shader::sp_decision_random(1u, 2u, 3u, 4u);
+  EXPECT_NE(base, shader::sp_decision_random(2u, 2u, 3u, 4u));
+  EXPECT_NE(base, shader::sp_decision_random(1u, 3u, 3u, 4u));
+  EXPECT_NE(base, shader::sp_decision_random(1u, 2u, 4u, 4u));
+  EXPECT_NE(base, shader::sp_decision_random(1u, 2u, 3u, 5u));
+}
+
+TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
+  IndicatorRing ring(4);
+  std::vector<Indicator> batch(6);
+  for (std::uint32_t k = 0; k < 6; ++k) {
+    batch[k].step = k;
+    batch[k].ray_index = k;
+  }
+  ring.push(std::span(batch).first(3));
+  ring.push(std::span(batch).subspan(3));
+  EXPECT_EQ(ring.total_pushed(), 6u);
+  auto live = ring.live(5, 1.0, 10.0);
+  ASSERT_EQ(live.size(), 4u);
+  EXPECT_EQ(live.front().ray_index, 2u);  // oldest surviving first
+  EXPECT_EQ(live.back().ray_index, 5u);
+  // dt 1 s, lifetime 2.5 s at step 5: ages 3,2,1,0 -> steps 3,4,5 live
+  EXPECT_EQ(ring.live(5, 1.0, 2.5).size(), 3u);
+  IndicatorRing small(2);
+  small.push(batch);  // more than capacity at once
+  auto kept = small.live(5, 1.0, 100.0);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].ray_index, 4u);
+}
+
+TEST(Simulation, RingBufferHoldsAtMostMaxIndicators) {
+  Config config = quiet_config();
+  config.max_indicators = 50;
+  config.indicator_lifetime = 100.0f;
+  auto sim = create_cpu_simulator(make_world(closed_room(), config).value()).value();
+  for (int n = 0; n < 3; ++n) ASSERT_TRUE(sim->step().ok());
+  auto live = sim->live_indicators().value();
+  EXPECT_EQ(live.size(), 50u);
+  auto last = sim->last_step_indicators().value();
+  ASSERT_GE(last.size(), 50u);
+  EXPECT_EQ(live.back().ray_index, last.back().ray_index);
+}
+
+TEST(Simulation, ApiArgumentsAreValidated) {
+  auto sim = create_cpu_simulator(make_world(closed_room(), quiet_config()).value()).value();
+  EXPECT_FALSE(sim->play(1, 1.0).ok());
+  EXPECT_FALSE(sim->play(0, -1.0).ok());
+  EXPECT_FALSE(sim->play(0, std::nan("")).ok());
+  EXPECT_TRUE(sim->play(0, 1.0).ok());
+  EXPECT_FALSE(sim->set_listener({std::nanf(""), 0, 0}).ok());
+  Scene no_listener = closed_room();
+  EXPECT_FALSE(make_world(no_listener, Config{}).ok());
+  Config bad = quiet_config();
+  bad.max_bounces = 1000;
+  EXPECT_FALSE(make_world(closed_room(), bad).ok());
+  Scene broken = closed_room();
+  broken.triangle_layers[3] = 9;
+  EXPECT_FALSE(make_world(broken, quiet_config()).ok());
+}
+
+}  // namespace
+}  // namespace sp
