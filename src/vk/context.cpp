@@ -1,0 +1,321 @@
+#include "vk/context.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <string_view>
+
+#include "vk/debug_messenger.h"
+#include "vk/device_selection.h"
+#include "vk/handle.h"
+#include "vk/vk_check.h"
+
+namespace sp::vk {
+
+// The messenger's sink; see debug_messenger.h.
+struct Context::Messages : MessageLog {};
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool env_is(const char* variable, std::string_view value) {
+  const char* text = std::getenv(variable);
+  return text != nullptr && value == text;
+}
+
+bool has_instance_layer(const char* name) {
+  std::uint32_t count = 0;
+  SP_VK_CHECK(vkEnumerateInstanceLayerProperties(&count, nullptr));
+  std::vector<VkLayerProperties> layers(count);
+  SP_VK_CHECK(vkEnumerateInstanceLayerProperties(&count, layers.data()));
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (std::strcmp(layers[i].layerName, name) == 0) return true;
+  }
+  return false;
+}
+
+// Instance extensions from the loader and drivers, or from `layer` if given.
+bool has_instance_extension(const char* layer, const char* name) {
+  std::uint32_t count = 0;
+  SP_VK_CHECK(vkEnumerateInstanceExtensionProperties(layer, &count, nullptr));
+  std::vector<VkExtensionProperties> extensions(count);
+  SP_VK_CHECK(vkEnumerateInstanceExtensionProperties(layer, &count, extensions.data()));
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (std::strcmp(extensions[i].extensionName, name) == 0) return true;
+  }
+  return false;
+}
+
+// `messages` non-null: validation on, with a messenger chained into the
+// create info so that vkCreateInstance/vkDestroyInstance are watched too.
+VkInstance create_instance(MessageLog* messages) {
+  std::vector<const char*> layers;
+  std::vector<const char*> extensions;
+  VkInstanceCreateFlags flags = 0;
+
+  if (messages != nullptr) {
+    if (!has_instance_layer(kValidationLayer)) {
+      throw Exception(ErrorCode::Vulkan, std::string("validation requested but the Vulkan layer ") + kValidationLayer +
+                                             " is not installed (Debian/Ubuntu package vulkan-validationlayers)");
+    }
+    if (!has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) &&
+        !has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
+      throw Exception(ErrorCode::Vulkan, std::string("validation requested but the instance extension ") +
+                                             VK_EXT_DEBUG_UTILS_EXTENSION_NAME + " is not available");
+    }
+    layers.push_back(kValidationLayer);
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  // Lists devices layered over another API (MoltenVK) too; harmless elsewhere.
+  if (has_instance_extension(nullptr, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME)) {
+    extensions.push_back(VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME);
+    flags |= VK_INSTANCE_CREATE_ENUMERATE_PORTABILITY_BIT_KHR;
+  }
+
+  VkApplicationInfo app{};
+  app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+  app.pApplicationName = "soundpaint";
+  app.pEngineName = "soundpaint";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  const VkDebugUtilsMessengerCreateInfoEXT messenger_info = debug_messenger_info(messages);
+  VkInstanceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+  info.pNext = messages != nullptr ? &messenger_info : nullptr;
+  info.flags = flags;
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  // The loader's answer when it finds no driver at all.
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
+    throw Exception(Error{ErrorCode::Vulkan, kNoDeviceMessage, static_cast<int>(result)});
+  }
+  SP_VK_CHECK(result);
+  return instance;
+}
+
+// Features every Vulkan 1.3 device has, requested explicitly: the later
+// graphics pass uses dynamic rendering and synchronization2 barriers;
+// timestamp queries are reset from the host; glslang's vulkan1.3 target
+// (SPIR-V 1.6) declares workgroup sizes with LocalSizeId, which needs
+// maintenance4.
+struct DeviceFeatures {
+  VkPhysicalDeviceFeatures2 features{};
+  VkPhysicalDeviceVulkan12Features vulkan12{};
+  VkPhysicalDeviceVulkan13Features vulkan13{};
+
+  DeviceFeatures() {
+    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    vulkan12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+    vulkan13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+    features.pNext = &vulkan12;
+    vulkan12.pNext = &vulkan13;
+  }
+  DeviceFeatures(const DeviceFeatures&) = delete;  // self-referential pNext chain
+  DeviceFeatures& operator=(const DeviceFeatures&) = delete;
+};
+
+void require_features(VkPhysicalDevice device, const char* device_name) {
+  DeviceFeatures supported;
+  vkGetPhysicalDeviceFeatures2(device, &supported.features);
+  std::string missing;
+  if (!supported.vulkan13.synchronization2) missing += " synchronization2";
+  if (!supported.vulkan13.dynamicRendering) missing += " dynamicRendering";
+  if (!supported.vulkan13.maintenance4) missing += " maintenance4";
+  if (!supported.vulkan12.hostQueryReset) missing += " hostQueryReset";
+  if (!missing.empty()) {
+    throw Exception(ErrorCode::Vulkan, std::string(device_name) + " lacks required Vulkan features:" + missing);
+  }
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings) {
+  return capture_errors(
+      [&]() -> std::unique_ptr<Context> {
+        // Built step by step; if a step throws, the destructor releases the
+        // steps already done (it skips null handles).
+        std::unique_ptr<Context> context(new Context());
+        const bool validation = settings.validation || env_is("SOUNDPAINT_VALIDATION", "1");
+        if (validation) context->messages_ = std::make_unique<Messages>();
+
+        context->instance_ = create_instance(context->messages_.get());
+        const VkInstance instance = context->instance_;
+        if (validation) {
+          const auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+              vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+          context->set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+              vkGetInstanceProcAddr(instance, "vkSetDebugUtilsObjectNameEXT"));
+          if (create_messenger == nullptr) {
+            throw Exception(ErrorCode::Vulkan,
+                            "vkCreateDebugUtilsMessengerEXT is missing although VK_EXT_debug_utils is on");
+          }
+          const VkDebugUtilsMessengerCreateInfoEXT info = debug_messenger_info(context->messages_.get());
+          SP_VK_CHECK(create_messenger(instance, &info, nullptr, &context->messenger_));
+        }
+
+        std::string device_name = settings.device_name;
+        if (device_name.empty()) {
+          const char* from_env = std::getenv("SOUNDPAINT_DEVICE");
+          if (from_env != nullptr) device_name = from_env;
+        }
+        const DeviceChoice choice = select_device(instance, device_name);
+        context->physical_device_ = choice.device;
+        context->queue_family_ = choice.queue_family;
+
+        VkPhysicalDeviceDriverProperties driver{};
+        driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
+        VkPhysicalDeviceSubgroupProperties subgroup{};
+        subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+        subgroup.pNext = &driver;
+        VkPhysicalDeviceProperties2 properties{};
+        properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+        properties.pNext = &subgroup;
+        vkGetPhysicalDeviceProperties2(choice.device, &properties);
+        context->properties_ = properties.properties;
+        context->subgroup_size_ = subgroup.subgroupSize;
+        context->driver_info_ = std::string(driver.driverName) + " " + driver.driverInfo;
+        vkGetPhysicalDeviceMemoryProperties(choice.device, &context->memory_properties_);
+
+        require_features(choice.device, context->properties_.deviceName);
+        DeviceFeatures enabled;
+        enabled.vulkan13.synchronization2 = VK_TRUE;
+        enabled.vulkan13.dynamicRendering = VK_TRUE;
+        enabled.vulkan13.maintenance4 = VK_TRUE;
+        enabled.vulkan12.hostQueryReset = VK_TRUE;
+
+        const float priority = 1.0f;
+        VkDeviceQueueCreateInfo queue_info{};
+        queue_info.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+        queue_info.queueFamilyIndex = choice.queue_family;
+        queue_info.queueCount = 1;
+        queue_info.pQueuePriorities = &priority;
+        VkDeviceCreateInfo device_info{};
+        device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+        device_info.pNext = &enabled.features;
+        device_info.queueCreateInfoCount = 1;
+        device_info.pQueueCreateInfos = &queue_info;
+        SP_VK_CHECK(vkCreateDevice(choice.device, &device_info, nullptr, &context->device_));
+        vkGetDeviceQueue(context->device_, choice.queue_family, 0, &context->queue_);
+        context->set_name(VK_OBJECT_TYPE_DEVICE, context->device_, "soundpaint device");
+        context->set_name(VK_OBJECT_TYPE_QUEUE, context->queue_, "soundpaint queue");
+
+        VkCommandPoolCreateInfo pool_info{};
+        pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool_info.queueFamilyIndex = choice.queue_family;
+        SP_VK_CHECK(vkCreateCommandPool(context->device_, &pool_info, nullptr, &context->one_time_pool_));
+        context->set_name(VK_OBJECT_TYPE_COMMAND_POOL, context->one_time_pool_, "soundpaint one-time commands");
+        return context;
+      },
+      ErrorCode::Vulkan);
+}
+
+Context::~Context() {
+  if (device_ != VK_NULL_HANDLE) {
+    // A lost device cannot be helped while tearing down; destroy regardless.
+    (void)vkDeviceWaitIdle(device_);
+    if (one_time_pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, one_time_pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_ != VK_NULL_HANDLE) {
+    const auto destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy_messenger != nullptr) destroy_messenger(instance_, messenger_, nullptr);
+  }
+  // Messages from here on reach messages_ through the create-info messenger.
+  if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
+}
+
+std::string Context::description() const { return std::string(properties_.deviceName) + ", driver " + driver_info_; }
+
+std::uint32_t Context::validation_message_count() const {
+  if (!messages_) return 0;
+  const std::lock_guard lock(messages_->mutex);
+  return messages_->count;
+}
+
+std::vector<std::string> Context::validation_messages() const {
+  if (!messages_) return {};
+  const std::lock_guard lock(messages_->mutex);
+  return messages_->texts;
+}
+
+std::uint32_t Context::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                                   VkMemoryPropertyFlags preferred) const {
+  for (const VkMemoryPropertyFlags wanted : {required | preferred, required}) {
+    for (std::uint32_t i = 0; i < memory_properties_.memoryTypeCount; ++i) {
+      const VkMemoryPropertyFlags flags = memory_properties_.memoryTypes[i].propertyFlags;
+      if ((type_bits & (1u << i)) != 0 && (flags & wanted) == wanted) return i;
+    }
+  }
+  throw Exception(ErrorCode::Vulkan, "no memory type among bits " + std::to_string(type_bits) +
+                                         " has the required property flags " + std::to_string(required));
+}
+
+void Context::set_name(VkObjectType type, std::uint64_t handle, const char* name) const {
+  if (set_object_name_ == nullptr || name == nullptr) return;
+  VkDebugUtilsObjectNameInfoEXT info{};
+  info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT;
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = name;
+  (void)set_object_name_(device_, &info);  // naming is best effort
+}
+
+VkCommandBuffer Context::begin_one_time() {
+  VkCommandBufferAllocateInfo allocate{};
+  allocate.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  allocate.commandPool = one_time_pool_;
+  allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocate.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkAllocateCommandBuffers(device_, &allocate, &cmd));
+  set_name(VK_OBJECT_TYPE_COMMAND_BUFFER, cmd, "soundpaint one-time command buffer");
+
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  const VkResult result = vkBeginCommandBuffer(cmd, &begin);
+  if (result != VK_SUCCESS) vkFreeCommandBuffers(device_, one_time_pool_, 1, &cmd);
+  SP_VK_CHECK(result);
+  return cmd;
+}
+
+void Context::end_one_time_and_wait(VkCommandBuffer cmd) {
+  // Frees `cmd` however this function ends.
+  struct FreeOnExit {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+  } free_on_exit{device_, one_time_pool_, cmd};
+
+  SP_VK_CHECK(vkEndCommandBuffer(cmd));
+  VkFenceCreateInfo fence_info{};
+  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence raw_fence = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &raw_fence));
+  const UniqueFence fence(device_, raw_fence);
+
+  submit(cmd, raw_fence);
+  SP_VK_CHECK(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX));
+}
+
+void Context::submit(VkCommandBuffer cmd, VkFence fence) const {
+  VkCommandBufferSubmitInfo cmd_info{};
+  cmd_info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
+  cmd_info.commandBuffer = cmd;
+  VkSubmitInfo2 submit_info{};
+  submit_info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
+  submit_info.commandBufferInfoCount = 1;
+  submit_info.pCommandBufferInfos = &cmd_info;
+  SP_VK_CHECK(vkQueueSubmit2(queue_, 1, &submit_info, fence));
+}
+
+}  // namespace sp::vk

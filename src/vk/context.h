@@ -1,0 +1,101 @@
+// The Vulkan instance, device and queue soundpaint runs on when it owns them
+// (CLI, tests, benchmarks). Picks a discrete or integrated GPU when present,
+// else any other device (lavapipe in CI).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "soundpaint/result.h"
+
+namespace sp::vk {
+
+struct ContextSettings {
+  // Enables VK_LAYER_KHRONOS_validation and a debug messenger that counts
+  // every warning and error it reports. Also on when SOUNDPAINT_VALIDATION=1.
+  bool validation = false;
+  // Case-insensitive substring of the device name to pick; empty: the
+  // SOUNDPAINT_DEVICE environment variable, else the best device by type
+  // (discrete > integrated > virtual > CPU).
+  std::string device_name;
+};
+
+class Context {
+ public:
+  // Errors (ErrorCode::Vulkan): no Vulkan loader/driver, no device with
+  // Vulkan 1.3 and a compute+graphics queue, no device matching the name,
+  // validation requested but the layer is not installed.
+  static Result<std::unique_ptr<Context>> create(const ContextSettings& settings = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical_device() const { return physical_device_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queue_family() const { return queue_family_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::uint32_t subgroup_size() const { return subgroup_size_; }
+
+  // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
+  std::string description() const;
+
+  // Validation messages (warning or error severity) seen so far, and their texts.
+  std::uint32_t validation_message_count() const;
+  std::vector<std::string> validation_messages() const;
+  bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+
+  // Index of a memory type allowed by `type_bits` having all `required`
+  // flags, preferring one that also has `preferred`. Throws if none.
+  std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                            VkMemoryPropertyFlags preferred = 0) const;
+
+  // Debug name for an object (vkSetDebugUtilsObjectNameEXT); no-op without
+  // validation.
+  void set_name(VkObjectType type, std::uint64_t handle, const char* name) const;
+  template <class T>
+  void set_name(VkObjectType type, T handle, const char* name) const {
+    set_name(type, reinterpret_cast<std::uint64_t>(handle), name);
+  }
+
+  // Submits one recorded command buffer to the queue, signalling `fence`.
+  void submit(VkCommandBuffer cmd, VkFence fence) const;
+
+  // Records with `record`, submits once, waits for completion. For uploads
+  // and readbacks outside the hot path.
+  template <class Fn>
+  void submit_and_wait(Fn&& record) {
+    VkCommandBuffer cmd = begin_one_time();
+    record(cmd);
+    end_one_time_and_wait(cmd);
+  }
+
+ private:
+  Context() = default;
+  VkCommandBuffer begin_one_time();
+  void end_one_time_and_wait(VkCommandBuffer cmd);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::uint32_t queue_family_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_properties_{};
+  std::string driver_info_;
+  std::uint32_t subgroup_size_ = 1;
+  VkCommandPool one_time_pool_ = VK_NULL_HANDLE;
+  PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
+
+  struct Messages;
+  std::unique_ptr<Messages> messages_;
+};
+
+}  // namespace sp::vk

@@ -1,0 +1,19 @@
+// Test kernel for tests/test_vk.cpp: data[i] = value + i for i < count.
+#version 460
+
+// Must match kFillGroupSize in tests/test_vk.cpp.
+layout(local_size_x = 64) in;
+
+layout(set = 0, binding = 0, std430) buffer Data {
+  uint data[];
+};
+
+layout(push_constant) uniform Push {
+  uint count;
+  uint value;
+} push;
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i < push.count) data[i] = push.value + i;
+}
