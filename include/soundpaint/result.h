@@ -55,6 +55,7 @@ class Result {
   T* operator->() { return &checked(); }
   const T* operator->() const { return &const_cast<Result*>(this)->checked(); }
   T& operator*() { return checked(); }
+  const T& operator*() const { return const_cast<Result*>(this)->checked(); }
 
   const Error& error() const { return std::get<1>(data_); }
 

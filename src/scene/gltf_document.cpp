@@ -1,0 +1,110 @@
+#include "scene/gltf_document.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "scene/scene_error.h"
+
+namespace sp::scene_detail {
+namespace {
+
+// Extensions that replace the geometry buffers with a compressed form this
+// loader cannot decode; failing up front gives a clearer message than the
+// empty accessors they leave behind.
+constexpr std::array<std::string_view, 3> kUnsupportedRequiredExtensions = {
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression"};
+
+// Soundpaint needs geometry only; textures are neither decoded nor checked.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+// tinygltf's messages end in newlines and may hold several lines; ours are
+// one line. nlohmann's "[json.exception.parse_error.101] " ids mean nothing
+// to a user either.
+std::string one_line(std::string text) {
+  for (std::size_t at = text.find("[json.exception."); at != std::string::npos; at = text.find("[json.exception.")) {
+    const std::size_t close = text.find("] ", at);
+    if (close == std::string::npos) break;
+    text.erase(at, close + 2 - at);
+  }
+  std::replace(text.begin(), text.end(), '\n', ';');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  while (!text.empty() && (text.back() == ';' || text.back() == ' ')) text.pop_back();
+  return printable(text);
+}
+
+std::vector<unsigned char> read_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) fail("file not found");
+  if (std::filesystem::is_directory(status)) fail("is a directory, not a glTF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot open file for reading");
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail("read error");
+  return bytes;
+}
+
+bool has_glb_magic(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+tinygltf::Model read_gltf(const std::filesystem::path& path) {
+  const std::vector<unsigned char> bytes = read_file(path);
+  if (bytes.empty()) fail("empty file");
+  // tinygltf takes the length as unsigned int.
+  if (bytes.size() > std::numeric_limits<std::uint32_t>::max()) fail("file larger than 4 GiB");
+  const bool binary = has_glb_magic(bytes);
+  if (!binary && lower_extension(path) == ".glb") fail("not a binary glTF file (no \"glTF\" magic)");
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skip_image, nullptr);
+  // Extras are read back as JSON text, which keeps integer/float/bool distinct.
+  loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
+
+  tinygltf::Model model;
+  std::string err;
+  std::string warn;
+  const std::string base_dir = path.parent_path().string();
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      size, base_dir);
+  if (!ok) {
+    std::string problem = one_line(err.empty() ? warn : err);
+    if (problem.empty()) problem = "tinygltf could not parse it";
+    fail((binary ? "cannot load binary glTF: " : "cannot load glTF: ") + problem);
+  }
+  if (model.asset.version.rfind("2.", 0) != 0) {
+    fail("unsupported glTF version \"" + printable(model.asset.version) + "\" (need 2.x)");
+  }
+  for (const std::string& required : model.extensionsRequired) {
+    const auto it = std::find(kUnsupportedRequiredExtensions.begin(), kUnsupportedRequiredExtensions.end(), required);
+    if (it != kUnsupportedRequiredExtensions.end()) {
+      fail("required extension " + required + " (compressed geometry) is not supported");
+    }
+  }
+  return model;
+}
+
+}  // namespace sp::scene_detail
