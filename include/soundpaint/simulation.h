@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,11 @@ struct SimulationStats {
 
 enum class Backend { Cpu, Gpu };
 
+struct GpuSettings {
+  bool validation = false;  // Khronos validation layer (also SOUNDPAINT_VALIDATION=1)
+  std::string device_name;  // substring of the device to use; empty: SOUNDPAINT_DEVICE, else the best
+};
+
 struct CpuSettings {
   unsigned threads = 0;  // worker threads; 0: std::thread::hardware_concurrency()
 };
@@ -94,11 +100,20 @@ class Simulator {
   // Casts made by the last step (for timing reports).
   virtual std::uint64_t last_step_casts() const = 0;
 
+  // GPU time of the last step from timestamp queries, in milliseconds; empty
+  // for the CPU backend or a device without timestamps.
+  virtual std::optional<double> last_gpu_ms() const { return std::nullopt; }
+
   virtual Result<SimulationStats> stats() = 0;
 };
 
 // Creates the multithreaded CPU backend.
 Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSettings& settings = {});
+
+// Creates the Vulkan compute backend on its own instance and device.
+// Errors (ErrorCode::Vulkan): no Vulkan device; (LimitExceeded): the scene or
+// ray budget exceeds a device limit (each buffer names itself).
+Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSettings& settings = {});
 
 // Opacity of an indicator of the given age (SPEC 1.4).
 float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds);

@@ -7,6 +7,7 @@
 
 #include "sim/cpu_tracer.h"
 #include "sim/indicator_ring.h"
+#include "sim/host_inputs.h"
 #include "sim/step_plan.h"
 #include "sim/thread_pool.h"
 #include "sp_ray_model.h"
@@ -25,8 +26,7 @@ class CpuSimulator final : public Simulator {
         pool_(settings.threads),
         ring_(world_.config.max_indicators),
         layer_table_(make_layer_table(world_)),
-        listener_(world_.listener),
-        play_windows_(world_.sources.size()),
+        host_(world_.listener, world_.sources.size()),
         worker_counters_(pool_.size()) {
     totals_.layers.resize(world_.layer_names.size());
     for (auto& counters : worker_counters_) counters.layers.resize(world_.layer_names.size());
@@ -37,26 +37,15 @@ class CpuSimulator final : public Simulator {
   std::uint64_t steps_run() const override { return steps_run_; }
   std::uint64_t last_step_casts() const override { return last_casts_; }
 
-  Result<bool> set_listener(glm::vec3 position) override {
-    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
-      return Error{ErrorCode::InvalidArgument, "set_listener: position must be finite"};
-    listener_ = position;
-    return true;
-  }
+  Result<bool> set_listener(glm::vec3 position) override { return host_.set_listener(position); }
 
   Result<bool> play(std::uint32_t source_id, double duration) override {
-    if (source_id >= world_.sources.size())
-      return Error{ErrorCode::InvalidArgument, "play: unknown source id " + std::to_string(source_id)};
-    if (!(duration >= 0.0) || !std::isfinite(duration))
-      return Error{ErrorCode::InvalidArgument, "play: duration must be finite and >= 0"};
-    double start = static_cast<double>(steps_run_) * world_.config.dt;
-    play_windows_[source_id] = {start, start + duration};
-    return true;
+    return host_.play(source_id, duration, static_cast<double>(steps_run_) * world_.config.dt);
   }
 
   Result<bool> step() override {
     const std::uint64_t step = steps_run_;
-    StepPlan plan = plan_step(world_, step, listener_, play_windows_);
+    StepPlan plan = host_.plan(world_, step);
     TraceContext context{&world_.bvh, layer_table_, plan.sources, make_sim_params(world_.config, step)};
 
     const std::size_t chunks = (plan.total_rays + kChunkRays - 1) / kChunkRays;
@@ -134,8 +123,7 @@ class CpuSimulator final : public Simulator {
   ThreadPool pool_;
   IndicatorRing ring_;
   std::vector<shader::LayerAcoustics> layer_table_;
-  glm::vec3 listener_;
-  std::vector<PlayWindow> play_windows_;
+  HostInputs host_;
   std::vector<TraceCounters> worker_counters_;
   std::vector<std::vector<Indicator>> chunk_indicators_;
   std::vector<Indicator> last_indicators_;

@@ -1,0 +1,37 @@
+#version 460
+// Stage (a): emits the step's rays from the active sources into queue 0 and
+// resets the per-step counters (this kernel runs first in every step).
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_bindings.glsl"
+#include "sp_ray_model.h"
+
+layout(local_size_x = SP_WORKGROUP_SIZE) in;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint total = step_input.total_rays;
+  if (i == 0u) {
+    control.queues[0].group_count_x = (total + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
+    control.queues[0].group_count_y = 1u;
+    control.queues[0].group_count_z = 1u;
+    control.queues[0].count = total;
+    control.queues[1].group_count_x = 0u;
+    control.queues[1].group_count_y = 1u;
+    control.queues[1].group_count_z = 1u;
+    control.queues[1].count = 0u;
+    control.step_indicators = 0u;
+    control.step_casts = 0u;
+  }
+  if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
+  if (i >= total) return;
+
+  // Sources own contiguous ray ranges in ascending order: binary search.
+  uint lo = 0u;
+  uint hi = step_input.source_count - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi + 1u) / 2u;
+    if (step_sources[mid].first_ray <= i) lo = mid; else hi = mid - 1u;
+  }
+  rays[i] = sp_emit_ray(step_sources[lo], lo, i, step_input.params.seed, step_input.params.step);
+  queue_entries[i] = i;
+}

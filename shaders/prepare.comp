@@ -1,0 +1,40 @@
+#version 460
+// One thread between wavefront iterations: turns the output queue's length
+// into the next indirect dispatch, empties the consumed queue for reuse, and
+// on the step's last iteration folds the step into the running totals and
+// the indicator draw's instance count.
+#extension GL_GOOGLE_include_directive : require
+#include "gpu_bindings.glsl"
+
+layout(local_size_x = 1) in;
+
+void add64(inout uint lo, inout uint hi, uint value) {
+  uint sum = lo + value;
+  if (sum < lo) hi += 1u;
+  lo = sum;
+}
+
+void main() {
+  uint queue_in = push.queue_in;
+  uint queue_out = 1u - queue_in;
+  control.queues[queue_out].group_count_x = (control.queues[queue_out].count + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
+  control.queues[queue_in].group_count_x = 0u;
+  control.queues[queue_in].count = 0u;
+  if (push.finish == 0u) return;
+
+  uint made = control.step_indicators;
+  uint capacity = step_input.ring_capacity;
+  control.ring_head = (control.ring_head + made) % capacity;
+  control.ring_filled = min(capacity, control.ring_filled + min(made, capacity));
+  control.draw_instance_count = control.ring_filled;
+  add64(control.total_indicators_lo, control.total_indicators_hi, made);
+  add64(control.total_casts_lo, control.total_casts_hi, control.step_casts);
+  add64(control.total_rays_lo, control.total_rays_hi, step_input.total_rays);
+  control.max_step_casts = max(control.max_step_casts, control.step_casts);
+  control.steps += 1u;
+  uint step_counters = step_input.layer_count * SP_COUNTERS_PER_LAYER;
+  for (uint k = 0u; k < step_counters; ++k) {
+    uint total_index = step_counters + 2u * k;
+    add64(counters[total_index], counters[total_index + 1u], counters[k]);
+  }
+}

@@ -1,0 +1,79 @@
+// Layouts used only by the GPU backend's buffers, shared with C++ for the
+// static_asserts and for the host's reads and writes.
+#ifndef SP_GPU_TYPES_H
+#define SP_GPU_TYPES_H
+
+#include "sp_types.h"
+
+// Storage-buffer bindings of the one descriptor set all kernels share.
+#define SP_BINDING_NODES 0
+#define SP_BINDING_TRIANGLES 1
+#define SP_BINDING_LAYERS 2
+#define SP_BINDING_STEP_INPUT 3
+#define SP_BINDING_RAYS 4
+#define SP_BINDING_HITS 5
+#define SP_BINDING_QUEUES 6
+#define SP_BINDING_CONTROL 7
+#define SP_BINDING_RING 8
+#define SP_BINDING_CAPTURE 9
+#define SP_BINDING_COUNTERS 10
+#define SP_BINDING_COUNT 11
+
+// Per-layer counters: 4 per layer per step (hits, reflections, penetrations,
+// backcast misses), then 8 per layer of 64-bit totals as (lo, hi) pairs.
+#define SP_COUNTERS_PER_LAYER 4u
+
+SP_BEGIN_NAMESPACE
+
+// A work queue's VkDispatchIndirectCommand followed by its length: the
+// resolve kernel appends by bumping `count`, the prepare kernel turns count
+// into group_count_x for the next dispatch.
+struct QueueArgs {
+  uint group_count_x;
+  uint group_count_y;
+  uint group_count_z;
+  uint count;
+};
+
+// GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the
+// indicator draw instances from.
+struct Control {
+  QueueArgs queues[2];
+  uint draw_vertex_count;
+  uint draw_instance_count;
+  uint draw_first_vertex;
+  uint draw_first_instance;
+  uint ring_head;        // next ring slot at the start of a step
+  uint ring_filled;      // slots holding an indicator, <= capacity
+  uint step_indicators;  // indicators appended by the current step
+  uint step_casts;       // casts of the current step
+  uint total_indicators_lo;
+  uint total_indicators_hi;
+  uint total_casts_lo;
+  uint total_casts_hi;
+  uint max_step_casts;
+  uint steps;
+  uint total_rays_lo;
+  uint total_rays_hi;
+};
+
+// Written by the host before each step's submit.
+struct StepInput {
+  SimParams params;
+  uint total_rays;      // rays emitted this step
+  uint source_count;    // entries used in the step's source table
+  uint ring_capacity;   // max_indicators
+  uint layer_count;
+};
+
+// Push constants of the wavefront kernels.
+struct WavefrontPush {
+  uint queue_in;   // 0 or 1: which queue this iteration consumes
+  uint finish;     // prepare: 1 on the step's last iteration
+  uint max_rays;   // capacity of each queue
+  uint pad0;
+};
+
+SP_END_NAMESPACE
+
+#endif  // SP_GPU_TYPES_H

@@ -1,0 +1,45 @@
+// The GPU backend's device objects: scene buffers (uploaded once), per-budget
+// ray buffers, the indicator ring and capture list, counters, the shared
+// descriptor set and the four kernels.
+#pragma once
+
+#include <cstdint>
+
+#include "soundpaint/simulation.h"
+#include "sp_gpu_types.h"
+#include "vk/buffer.h"
+#include "vk/compute_pipeline.h"
+#include "vk/context.h"
+
+namespace sp::gpu {
+
+struct Kernels {
+  vk::ComputePipeline emit;
+  vk::ComputePipeline trace;
+  vk::ComputePipeline resolve;
+  vk::ComputePipeline prepare;
+};
+
+struct GpuResources {
+  // Sizes all buffers for `world`; throws sp::Exception (LimitExceeded when
+  // a buffer would exceed the device's storage-buffer range).
+  GpuResources(vk::Context& context, const World& world);
+
+  std::uint32_t max_rays = 0;           // rays per step the buffers hold (== ray_budget, at least 1)
+  std::uint32_t capture_capacity = 0;   // indicators one step can create, worst case
+  std::uint32_t ring_capacity = 0;      // max_indicators
+  std::uint32_t layer_count = 0;
+  std::uint32_t iterations = 0;         // wavefront iterations per step
+
+  vk::Buffer nodes, triangles, layers;  // scene, read-only
+  vk::Buffer step_input;                // host-written each step
+  vk::Buffer rays, hits, queues;        // ray state and work queues
+  vk::Buffer control;                   // queue args, draw args, totals
+  vk::Buffer ring, capture;             // indicators
+  vk::Buffer counters;                  // per-layer counters
+  vk::Buffer control_readback;          // copy of control after each step
+  vk::StorageBindings bindings;
+  Kernels kernels;
+};
+
+}  // namespace sp::gpu

@@ -1,0 +1,234 @@
+// The GPU backend. Per step the host writes a small step-input block (the
+// registry's source table and the step's parameters), submits the command
+// buffer recorded once at creation, and waits on a fence; indicators stay on
+// the GPU unless a caller asks for them.
+#include "gpu/gpu_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <tuple>
+
+#include "gpu/gpu_resources.h"
+#include "gpu/step_recorder.h"
+#include "sim/host_inputs.h"
+#include "sim/step_plan.h"
+#include "vk/handle.h"
+#include "vk/vk_check.h"
+
+namespace sp::gpu {
+namespace {
+
+// A stuck step on a broken device fails instead of hanging the caller.
+constexpr std::uint64_t kStepTimeoutNs = 120ull * 1'000'000'000ull;
+
+std::uint64_t join64(std::uint32_t lo, std::uint32_t hi) { return (std::uint64_t{hi} << 32) | lo; }
+
+void sort_canonically(std::vector<Indicator>& indicators) {
+  std::sort(indicators.begin(), indicators.end(), [](const Indicator& a, const Indicator& b) {
+    return std::tie(a.step, a.iteration, a.ray_index) < std::tie(b.step, b.iteration, b.ray_index);
+  });
+}
+
+class GpuSimulator final : public Simulator {
+ public:
+  GpuSimulator(World world, vk::Context& context, std::unique_ptr<vk::Context> owned)
+      : owned_context_(std::move(owned)),
+        context_(context),
+        world_(std::move(world)),
+        resources_(context_, world_),
+        host_(world_.listener, world_.sources.size()) {
+    VkDevice device = context_.device();
+    VkCommandPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    pool_info.queueFamilyIndex = context_.queue_family();
+    VkCommandPool pool = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
+    command_pool_ = vk::UniqueCommandPool(device, pool);
+    VkCommandBufferAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    alloc.commandPool = pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    SP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &command_buffer_));
+    context_.set_name(VK_OBJECT_TYPE_COMMAND_BUFFER, command_buffer_, "soundpaint step");
+
+    VkFenceCreateInfo fence_info{};
+    fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    VkFence fence = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateFence(device, &fence_info, nullptr, &fence));
+    fence_ = vk::UniqueFence(device, fence);
+
+    if (timestamps_supported()) {
+      VkQueryPoolCreateInfo query_info{};
+      query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      query_info.queryCount = 2;
+      VkQueryPool query_pool = VK_NULL_HANDLE;
+      SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
+      timestamps_ = vk::UniqueQueryPool(device, query_pool);
+    }
+
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    SP_VK_CHECK(vkBeginCommandBuffer(command_buffer_, &begin));
+    record_step(command_buffer_, resources_, timestamps_.get());
+    SP_VK_CHECK(vkEndCommandBuffer(command_buffer_));
+  }
+
+  ~GpuSimulator() override { vkDeviceWaitIdle(context_.device()); }
+
+  Backend backend() const override { return Backend::Gpu; }
+  const World& world() const override { return world_; }
+  std::uint64_t steps_run() const override { return steps_run_; }
+  std::uint64_t last_step_casts() const override { return last_control_.step_casts; }
+
+  Result<bool> set_listener(glm::vec3 position) override { return host_.set_listener(position); }
+
+  Result<bool> play(std::uint32_t source_id, double duration) override {
+    return host_.play(source_id, duration, static_cast<double>(steps_run_) * world_.config.dt);
+  }
+
+  Result<bool> step() override {
+    return capture_errors([&] {
+      write_step_input();
+      context_.submit(command_buffer_, fence_.get());
+      VkFence fence = fence_.get();
+      VkResult waited = vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kStepTimeoutNs);
+      if (waited == VK_TIMEOUT) throw Exception(ErrorCode::Vulkan, "a GPU step did not finish within 120 s");
+      SP_VK_CHECK(waited);
+      SP_VK_CHECK(vkResetFences(context_.device(), 1, &fence));
+      std::memcpy(&last_control_, resources_.control_readback.mapped(), sizeof last_control_);
+      read_timestamps();
+      steps_run_ += 1;
+      return true;
+    }, ErrorCode::Vulkan);
+  }
+
+  Result<std::vector<Indicator>> last_step_indicators() override {
+    return capture_errors([&] {
+      std::vector<Indicator> indicators(std::min(last_control_.step_indicators, resources_.capture_capacity));
+      if (!indicators.empty())
+        vk::download(context_, resources_.capture, indicators.data(), indicators.size() * sizeof(Indicator));
+      sort_canonically(indicators);
+      return indicators;
+    }, ErrorCode::Vulkan);
+  }
+
+  Result<std::vector<Indicator>> live_indicators() override {
+    return capture_errors([&] {
+      std::vector<Indicator> stored(last_control_.ring_filled);
+      if (!stored.empty())
+        vk::download(context_, resources_.ring, stored.data(), stored.size() * sizeof(Indicator));
+      std::vector<Indicator> live;
+      if (steps_run_ == 0) return live;
+      const std::uint64_t now = steps_run_ - 1;
+      for (const Indicator& ind : stored) {
+        double age = static_cast<double>(now - std::min<std::uint64_t>(now, ind.step)) * world_.config.dt;
+        if (age < world_.config.indicator_lifetime) live.push_back(ind);
+      }
+      sort_canonically(live);
+      return live;
+    }, ErrorCode::Vulkan);
+  }
+
+  Result<SimulationStats> stats() override {
+    return capture_errors([&] {
+      const std::size_t layers = world_.layer_names.size();
+      std::vector<std::uint32_t> counters(layers * SP_COUNTERS_PER_LAYER * 3);
+      if (!counters.empty())
+        vk::download(context_, resources_.counters, counters.data(), counters.size() * sizeof(std::uint32_t));
+      const shader::Control& c = last_control_;
+      SimulationStats stats;
+      stats.steps = c.steps;
+      stats.casts = join64(c.total_casts_lo, c.total_casts_hi);
+      stats.max_casts_per_step = c.max_step_casts;
+      stats.rays_emitted = join64(c.total_rays_lo, c.total_rays_hi);
+      stats.indicators = join64(c.total_indicators_lo, c.total_indicators_hi);
+      const std::size_t totals = layers * SP_COUNTERS_PER_LAYER;
+      for (std::size_t l = 0; l < layers; ++l) {
+        auto total = [&](std::size_t which) {
+          std::size_t k = totals + 2 * (l * SP_COUNTERS_PER_LAYER + which);
+          return join64(counters[k], counters[k + 1]);
+        };
+        stats.layers.push_back({total(0), total(1), total(2), total(3)});
+      }
+      return stats;
+    }, ErrorCode::Vulkan);
+  }
+
+  std::optional<double> last_gpu_ms() const override {
+    if (!timestamps_) return std::nullopt;
+    return last_gpu_ms_;
+  }
+
+ private:
+  bool timestamps_supported() const {
+    if (!context_.properties().limits.timestampComputeAndGraphics) return false;
+    std::uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context_.physical_device(), &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(context_.physical_device(), &count, families.data());
+    return context_.queue_family() < count && families[context_.queue_family()].timestampValidBits > 0;
+  }
+
+  void write_step_input() {
+    StepPlan plan = host_.plan(world_, steps_run_);
+    shader::StepInput input{};
+    input.params = make_sim_params(world_.config, steps_run_);
+    input.total_rays = plan.total_rays;
+    input.source_count = static_cast<std::uint32_t>(plan.sources.size());
+    input.ring_capacity = resources_.ring_capacity;
+    input.layer_count = resources_.layer_count;
+    auto* mapped = static_cast<std::byte*>(resources_.step_input.mapped());
+    std::memcpy(mapped, &input, sizeof input);
+    if (!plan.sources.empty())
+      std::memcpy(mapped + sizeof input, plan.sources.data(), plan.sources.size() * sizeof(shader::StepSource));
+  }
+
+  void read_timestamps() {
+    if (!timestamps_) return;
+    std::uint64_t ticks[2] = {};
+    SP_VK_CHECK(vkGetQueryPoolResults(context_.device(), timestamps_.get(), 0, 2, sizeof ticks, ticks,
+                                      sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    last_gpu_ms_ = static_cast<double>(ticks[1] - ticks[0]) * context_.properties().limits.timestampPeriod * 1e-6;
+  }
+
+  std::unique_ptr<vk::Context> owned_context_;  // set when the simulator made its own
+  vk::Context& context_;
+  World world_;
+  GpuResources resources_;
+  HostInputs host_;
+  vk::UniqueCommandPool command_pool_;
+  VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;  // freed with the pool
+  vk::UniqueFence fence_;
+  vk::UniqueQueryPool timestamps_;
+  shader::Control last_control_{};
+  double last_gpu_ms_ = 0.0;
+  std::uint64_t steps_run_ = 0;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context) {
+  return capture_errors([&]() -> std::unique_ptr<Simulator> {
+    return std::make_unique<GpuSimulator>(std::move(world), context, nullptr);
+  }, ErrorCode::Vulkan);
+}
+
+}  // namespace sp::gpu
+
+namespace sp {
+
+Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSettings& settings) {
+  return capture_errors([&]() -> std::unique_ptr<Simulator> {
+    vk::ContextSettings context_settings;
+    context_settings.validation = settings.validation;
+    context_settings.device_name = settings.device_name;
+    std::unique_ptr<vk::Context> context = vk::Context::create(context_settings).value();
+    vk::Context& ref = *context;
+    return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
+  }, ErrorCode::Vulkan);
+}
+
+}  // namespace sp

@@ -1,0 +1,66 @@
+#include "gpu/step_recorder.h"
+
+#include <algorithm>
+
+#include "vk/barriers.h"
+
+namespace sp::gpu {
+namespace {
+
+void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline& kernel, std::uint32_t queue_in,
+          std::uint32_t finish) {
+  shader::WavefrontPush push{queue_in, finish, r.max_rays, 0};
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.get());
+  vkCmdPushConstants(cmd, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+}
+
+}  // namespace
+
+void record_step(VkCommandBuffer cmd, const GpuResources& r, VkQueryPool timestamps) {
+  if (timestamps) {
+    vkCmdResetQueryPool(cmd, timestamps, 0, 2);
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps, 0);
+  }
+  // The previous step's readback copy and the host's step-input write must
+  // land before this step's kernels touch control and read the inputs.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  VkDescriptorSet set = r.bindings.set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernels.emit.layout(), 0, 1, &set, 0, nullptr);
+
+  bind(cmd, r, r.kernels.emit, 0, 0);
+  const std::uint32_t emit_threads = std::max(r.max_rays, r.layer_count * SP_COUNTERS_PER_LAYER);
+  vkCmdDispatch(cmd, (emit_threads + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE, 1, 1);
+  // Emitted rays, queue 0 and its indirect arguments feed the first trace.
+  vk::compute_to_compute(cmd);
+
+  for (std::uint32_t it = 0; it < r.iterations; ++it) {
+    const std::uint32_t queue_in = it % 2;
+    const VkDeviceSize args = queue_in * sizeof(shader::QueueArgs);
+    bind(cmd, r, r.kernels.trace, queue_in, 0);
+    vkCmdDispatchIndirect(cmd, r.control.get(), args);
+    // Hits written by trace are read by resolve.
+    vk::compute_to_compute(cmd);
+    bind(cmd, r, r.kernels.resolve, queue_in, 0);
+    vkCmdDispatchIndirect(cmd, r.control.get(), args);
+    // The output queue's count, bumped by resolve, is read by prepare.
+    vk::compute_to_compute(cmd);
+    bind(cmd, r, r.kernels.prepare, queue_in, it + 1 == r.iterations ? 1u : 0u);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    // Prepare's group count is the next iteration's indirect argument.
+    vk::compute_to_compute(cmd);
+  }
+
+  // The step's totals, as the last prepare left them, go to the host.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferCopy region{0, 0, sizeof(shader::Control)};
+  vkCmdCopyBuffer(cmd, r.control.get(), r.control_readback.get(), 1, &region);
+  // Make the copy visible to host reads after the fence.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+  if (timestamps) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps, 1);
+}
+
+}  // namespace sp::gpu
