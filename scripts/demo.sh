@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Setup + demo: installs dependencies, builds, and simulates the bundled level,
+# writing demo-output/indicators.csv and demo-output/stats.json.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+mkdir -p demo-output
+./build/soundpaint info scenes/level.gltf
+./build/soundpaint simulate scenes/level.gltf --steps 240 \
+  --indicators demo-output/indicators.csv --stats demo-output/stats.json
+echo "wrote demo-output/indicators.csv and demo-output/stats.json"

@@ -1,0 +1,62 @@
+#include <chrono>
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "cli/options.h"
+#include "soundpaint/simulation.h"
+
+namespace sp::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: soundpaint info SCENE [--config FILE]\n"
+    "\n"
+    "Prints the scene's triangles, layers (with triangle counts and the acoustic\n"
+    "properties they resolve to), sources, listener, and BVH node count, depth and\n"
+    "build time. --config applies a configuration's layers, sources and listener.\n";
+
+void print_vec(glm::vec3 v) { std::printf("(%.3f, %.3f, %.3f)", double(v.x), double(v.y), double(v.z)); }
+
+}  // namespace
+
+int run_info(const std::vector<std::string>& args) {
+  ParsedArgs parsed = parse_args(args, {"--config"}, {"--help"});
+  if (parsed.flags.count("--help")) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (parsed.positionals.size() != 1)
+    throw Exception(ErrorCode::InvalidArgument, "info needs exactly one SCENE argument (see --help)");
+  Config config;
+  if (auto path = parsed.value("--config")) config = load_config(*path).value();
+  Scene scene = load_scene(parsed.positionals[0]).value();
+  // info describes scenes without a listener too; simulate would reject them.
+  const char* listener_from = config.listener_position ? "config" : scene.camera ? "camera" : "none; origin assumed";
+  if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
+  World world = make_world(scene, config).value();
+
+  std::printf("scene: %s\n", scene.path.string().c_str());
+  std::printf("triangles: %zu\n", scene.triangle_count());
+  std::printf("layers: %zu\n", world.layer_names.size());
+  for (std::size_t l = 0; l < world.layer_names.size(); ++l)
+    std::printf("  %-16s %8u triangles  reflect_probability %.2f  attenuation %.2f/m\n", world.layer_names[l].c_str(),
+                world.layer_triangle_counts[l], double(world.layer_properties[l].reflect_probability),
+                double(world.layer_properties[l].attenuation));
+  std::printf("sources: %zu\n", world.sources.size());
+  for (std::size_t id = 0; id < world.sources.size(); ++id) {
+    const SourceDesc& s = world.sources[id];
+    std::printf("  %2zu %-16s %-12s at ", id, s.name.empty() ? "-" : s.name.c_str(), s.category.c_str());
+    print_vec(s.position);
+    std::printf(" color ");
+    print_vec(s.color);
+    std::printf(" max_distance %.1f m, every %.3f s for %.3f s\n", double(s.max_distance), s.interval, s.duration);
+  }
+  std::printf("listener: ");
+  print_vec(world.listener);
+  std::printf(" (%s)\n", listener_from);
+  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.bvh.nodes.size(), world.bvh.depth,
+              world.bvh.build_ms);
+  return 0;
+}
+
+}  // namespace sp::cli

@@ -1,0 +1,68 @@
+#include "cli/options.h"
+
+#include <charconv>
+
+#include "soundpaint/result.h"
+
+namespace sp::cli {
+
+std::optional<std::string> ParsedArgs::value(const std::string& name) const {
+  auto it = values.find(name);
+  if (it == values.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<std::uint64_t> ParsedArgs::unsigned_value(const std::string& name, std::uint64_t min,
+                                                        std::uint64_t max) const {
+  auto text = value(name);
+  if (!text) return std::nullopt;
+  std::uint64_t parsed = 0;
+  auto [end, ec] = std::from_chars(text->data(), text->data() + text->size(), parsed);
+  if (text->empty() || ec != std::errc{} || end != text->data() + text->size() || parsed < min || parsed > max)
+    throw Exception(ErrorCode::InvalidArgument, "option " + name + ": expected an integer in [" +
+                                                    std::to_string(min) + ", " + std::to_string(max) + "], got '" +
+                                                    *text + "'");
+  return parsed;
+}
+
+ParsedArgs parse_args(const std::vector<std::string>& args, const std::set<std::string>& value_options,
+                      const std::set<std::string>& flag_options) {
+  ParsedArgs parsed;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg.size() < 2 || arg.rfind("--", 0) != 0) {
+      if (arg.size() > 1 && arg[0] == '-' && arg != "-h")
+        throw Exception(ErrorCode::InvalidArgument, "unknown option " + arg);
+      if (arg == "-h") {
+        parsed.flags.insert("--help");
+      } else {
+        parsed.positionals.push_back(arg);
+      }
+      continue;
+    }
+    std::string name = arg;
+    std::optional<std::string> inline_value;
+    if (auto eq = arg.find('='); eq != std::string::npos) {
+      name = arg.substr(0, eq);
+      inline_value = arg.substr(eq + 1);
+    }
+    if (flag_options.count(name)) {
+      if (inline_value) throw Exception(ErrorCode::InvalidArgument, "option " + name + " takes no value");
+      parsed.flags.insert(name);
+    } else if (value_options.count(name)) {
+      if (!inline_value) {
+        // "--steps --stats x" is a forgotten value, not a value "--stats".
+        if (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)
+          throw Exception(ErrorCode::InvalidArgument, "option " + name + " needs a value");
+        inline_value = args[++i];
+      }
+      if (parsed.values.count(name)) throw Exception(ErrorCode::InvalidArgument, "option " + name + " given twice");
+      parsed.values[name] = *inline_value;
+    } else {
+      throw Exception(ErrorCode::InvalidArgument, "unknown option " + name);
+    }
+  }
+  return parsed;
+}
+
+}  // namespace sp::cli

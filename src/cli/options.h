@@ -1,0 +1,29 @@
+// Minimal command-line parsing for the soundpaint subcommands: --name VALUE
+// options, --flags and positionals, with errors that name the option.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace sp::cli {
+
+struct ParsedArgs {
+  std::vector<std::string> positionals;
+  std::map<std::string, std::string> values;  // "--steps" -> "100"
+  std::set<std::string> flags;                // "--help"
+
+  std::optional<std::string> value(const std::string& name) const;
+  // Parses an unsigned integer option in [min, max]; throws on bad text.
+  std::optional<std::uint64_t> unsigned_value(const std::string& name, std::uint64_t min, std::uint64_t max) const;
+};
+
+// `value_options` take one argument; `flag_options` take none. Throws
+// sp::Exception(InvalidArgument) on unknown options or missing values.
+ParsedArgs parse_args(const std::vector<std::string>& args, const std::set<std::string>& value_options,
+                      const std::set<std::string>& flag_options);
+
+}  // namespace sp::cli

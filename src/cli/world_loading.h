@@ -1,0 +1,28 @@
+// Shared steps of the subcommands: scene + config -> World -> Simulator.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "soundpaint/simulation.h"
+
+namespace sp::cli {
+
+// Loads the scene and optional config, applies a --seed override, builds the
+// World. Throws sp::Exception naming the file and problem.
+World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
+                 std::optional<std::uint64_t> seed_override);
+
+enum class BackendChoice { Cpu, Gpu, Auto };
+
+// "cpu", "gpu" or "auto"; throws naming --backend otherwise.
+BackendChoice parse_backend(const std::string& name);
+
+const char* backend_name(Backend backend);
+
+// Auto tries the GPU and falls back to the CPU, saying so on stderr.
+std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads);
+
+}  // namespace sp::cli

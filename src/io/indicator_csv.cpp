@@ -1,0 +1,75 @@
+#include <charconv>
+#include <string>
+
+#include "io/atomic_file.h"
+#include "soundpaint/output.h"
+
+namespace sp {
+namespace {
+
+// Shortest text that reads back as the same float: CSVs of two runs compare
+// equal exactly when the values do.
+void append_float(std::string& out, float value) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc{} ? end : buffer);
+  out.push_back(',');
+}
+
+void append_uint(std::string& out, std::uint64_t value) {
+  char buffer[24];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc{} ? end : buffer);
+  out.push_back(',');
+}
+
+}  // namespace
+
+struct IndicatorCsvWriter::Impl {
+  explicit Impl(const std::filesystem::path& path) : file(path) {}
+  AtomicFile file;
+  std::string buffer;
+};
+
+IndicatorCsvWriter::IndicatorCsvWriter(const std::filesystem::path& path) : impl_(std::make_unique<Impl>(path)) {
+  impl_->file.write(std::string(kIndicatorCsvHeader) + "\n");
+}
+
+IndicatorCsvWriter::~IndicatorCsvWriter() = default;
+
+void IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
+  std::string& out = impl_->buffer;
+  out.clear();
+  for (const Indicator& ind : indicators) {
+    append_uint(out, ind.step);
+    out += ind.kind == SP_INDICATOR_HIT ? "hit," : "exit,";
+    append_uint(out, ind.source_id);
+    append_float(out, ind.position.x);
+    append_float(out, ind.position.y);
+    append_float(out, ind.position.z);
+    append_float(out, ind.normal.x);
+    append_float(out, ind.normal.y);
+    append_float(out, ind.normal.z);
+    append_float(out, ind.energy);
+    append_uint(out, ind.bounces);
+    append_uint(out, ind.penetrations);
+    append_float(out, ind.path_length);
+    append_float(out, ind.intensity);
+    append_float(out, ind.size);
+    append_float(out, ind.color.r);
+    append_float(out, ind.color.g);
+    append_float(out, ind.color.b);
+    out.back() = '\n';
+  }
+  impl_->file.write(out);
+}
+
+void IndicatorCsvWriter::commit() { impl_->file.commit(); }
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  AtomicFile file(path);
+  file.write(text);
+  file.commit();
+}
+
+}  // namespace sp

@@ -1,0 +1,54 @@
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "soundpaint/output.h"
+
+namespace sp {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  double upper = *middle;
+  if (values.size() % 2 == 1) return upper;
+  double lower = *std::max_element(values.begin(), middle);
+  return (lower + upper) / 2.0;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  double rank = std::ceil(std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(values.size()));
+  std::size_t index = rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1;
+  return values[std::min(index, values.size() - 1)];
+}
+
+std::string stats_json(const World& world, const SimulationStats& stats, const char* backend_name,
+                       const StepTimings& timings) {
+  nlohmann::ordered_json json;
+  json["steps"] = stats.steps;
+  json["backend"] = backend_name;
+  json["casts"] = stats.casts;
+  json["max_casts_per_step"] = stats.max_casts_per_step;
+  json["rays_emitted"] = stats.rays_emitted;
+  json["indicators"] = stats.indicators;
+  nlohmann::ordered_json layers = nlohmann::ordered_json::object();
+  for (std::size_t l = 0; l < world.layer_names.size() && l < stats.layers.size(); ++l) {
+    const LayerCounters& c = stats.layers[l];
+    layers[world.layer_names[l]] = {{"hits", c.hits},
+                                    {"reflections", c.reflections},
+                                    {"penetrations", c.penetrations},
+                                    {"backcast_misses", c.backcast_misses}};
+  }
+  json["layers"] = layers;
+  nlohmann::ordered_json timing;
+  timing["ms_per_step_median"] = median(timings.wall_ms);
+  timing["ms_per_step_p99"] = percentile(timings.wall_ms, 99.0);
+  if (!timings.gpu_ms.empty()) timing["gpu_ms_per_step_median"] = median(timings.gpu_ms);
+  json["timing"] = timing;
+  return json.dump(2) + "\n";
+}
+
+}  // namespace sp

@@ -1,0 +1,152 @@
+// The soundpaint executable end to end: the contract of SPEC section 4.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "soundpaint/output.h"
+#include "support/run_command.h"
+
+namespace sp {
+namespace {
+
+using test::run_command;
+using test::ScratchDir;
+
+const std::string kCli = SP_CLI_PATH;
+const std::string kScenes = SP_SCENES_DIR;
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> result;
+  std::stringstream stream(text);
+  for (std::string line; std::getline(stream, line);) result.push_back(line);
+  return result;
+}
+
+std::size_t count_files(const std::filesystem::path& dir) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
+}
+
+TEST(Cli, SimulateWritesTheContractCsvAndStats) {
+  ScratchDir dir("simulate");
+  auto r = run_command(kCli + " simulate " + kScenes + "/two_rooms.gltf --backend cpu --steps 20 --seed 3 --indicators " +
+                           (dir / "ind.csv").string() + " --stats " + (dir / "stats.json").string(),
+                       dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto csv = lines(test::read_text(dir / "ind.csv"));
+  ASSERT_GE(csv.size(), 2u);
+  EXPECT_EQ(csv[0], kIndicatorCsvHeader);
+  auto stats = nlohmann::json::parse(test::read_text(dir / "stats.json"));
+  EXPECT_EQ(stats["steps"], 20);
+  EXPECT_EQ(stats["backend"], "cpu");
+  EXPECT_EQ(stats["indicators"].get<std::size_t>(), csv.size() - 1);
+  EXPECT_GE(stats["casts"].get<std::uint64_t>(), stats["rays_emitted"].get<std::uint64_t>());
+  EXPECT_GT(stats["max_casts_per_step"].get<std::uint64_t>(), 0u);
+  EXPECT_TRUE(stats["timing"].contains("ms_per_step_median"));
+  EXPECT_TRUE(stats["timing"].contains("ms_per_step_p99"));
+  std::uint64_t hits = 0;
+  for (const auto& [name, layer] : stats["layers"].items()) {
+    for (const char* key : {"hits", "reflections", "penetrations", "backcast_misses"})
+      EXPECT_TRUE(layer.contains(key)) << name << " " << key;
+    hits += layer["hits"].get<std::uint64_t>();
+  }
+  EXPECT_GE(hits, stats["indicators"].get<std::uint64_t>() / 2);
+  // every row has 18 fields and a known kind; the step column counts up
+  int last_step = -1;
+  for (std::size_t k = 1; k < csv.size(); ++k) {
+    EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 17) << csv[k];
+    int step = std::stoi(csv[k]);
+    EXPECT_GE(step, last_step);
+    last_step = step;
+    auto kind = csv[k].substr(csv[k].find(',') + 1, 4);
+    EXPECT_TRUE(kind == "hit," || kind == "exit") << csv[k];
+  }
+  EXPECT_EQ(count_files(dir.path()), 4u);  // ind.csv, stats.json, stdout, stderr: no temporaries left
+}
+
+TEST(Cli, SameSeedGivesTheSameCsv) {
+  ScratchDir dir("seed");
+  auto run = [&](const std::string& name, const std::string& extra) {
+    auto r = run_command(kCli + " simulate " + kScenes + "/closed_room.gltf --backend cpu --steps 5 --seed 9 " + extra +
+                             " --indicators " + (dir / name).string(),
+                         dir.path());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::read_text(dir / name);
+  };
+  std::string a = run("a.csv", "--threads 1");
+  EXPECT_EQ(a, run("b.csv", "--threads 3"));
+  EXPECT_GT(lines(a).size(), 10u);
+}
+
+TEST(Cli, InfoDescribesTheScene) {
+  ScratchDir dir("info");
+  auto r = run_command(kCli + " info " + kScenes + "/two_rooms.gltf", dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* needle : {"triangles:", "layers:", "wood", "sources:", "listener:", "bvh:", "nodes"})
+    EXPECT_NE(r.out.find(needle), std::string::npos) << needle << "\n" << r.out;
+}
+
+TEST(Cli, HelpForEveryCommand) {
+  ScratchDir dir("help");
+  for (const char* command : {"", "simulate ", "info "}) {
+    auto r = run_command(kCli + " " + command + "--help", dir.path());
+    EXPECT_EQ(r.status, 0) << command;
+    EXPECT_NE(r.out.find("usage: soundpaint"), std::string::npos) << command;
+  }
+}
+
+// Bad input: non-zero exit, one line on stderr naming the problem, no file.
+void expect_clean_failure(const std::string& args, const std::string& needle) {
+  ScratchDir dir("bad");
+  auto out = dir / "out.csv";
+  auto r = run_command(kCli + " " + args + " --indicators " + out.string(), dir.path());
+  EXPECT_NE(r.status, 0) << args;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  EXPECT_EQ(count_files(dir.path()), 2u) << args;  // stdout.txt and stderr.txt only
+}
+
+TEST(Cli, BadInputFailsCleanly) {
+  const std::string scene = kScenes + "/closed_room.gltf";
+  expect_clean_failure("simulate /nonexistent/level.gltf", "/nonexistent/level.gltf");
+  expect_clean_failure("simulate " + scene + " --steps ten", "--steps");
+  expect_clean_failure("simulate " + scene + " --steps -3", "--steps");
+  expect_clean_failure("simulate " + scene + " --seed 99999999999", "--seed");
+  expect_clean_failure("simulate " + scene + " --frobnicate 1", "--frobnicate");
+  expect_clean_failure("simulate " + scene + " --backend quantum", "--backend");
+  expect_clean_failure("simulate " + scene + " --config /nonexistent.json", "/nonexistent.json");
+  expect_clean_failure("simulate " + scene + " --steps", "--steps");
+  expect_clean_failure("simulate", "SCENE");
+  expect_clean_failure("explode " + scene, "explode");
+}
+
+TEST(Cli, BadConfigNamesTheKey) {
+  ScratchDir dir("config");
+  auto config = dir / "c.json";
+  std::ofstream(config) << R"({"ray_budget": 100, "max_wall_thicknes": 0.3})";
+  expect_clean_failure("simulate " + kScenes + "/closed_room.gltf --config " + config.string(), "max_wall_thicknes");
+  std::ofstream(config, std::ios::trunc) << R"({"bounce_energy_loss": 1.5})";
+  expect_clean_failure("simulate " + kScenes + "/closed_room.gltf --config " + config.string(), "bounce_energy_loss");
+}
+
+TEST(Cli, UnwritableOutputFailsBeforeSimulating) {
+  ScratchDir dir("unwritable");
+  auto r = run_command(kCli + " simulate " + kScenes +
+                           "/closed_room.gltf --steps 5 --indicators /nonexistent-dir/x.csv --stats " +
+                           (dir / "s.json").string(),
+                       dir.path());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("/nonexistent-dir/x.csv"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
+  auto into_dir = run_command(kCli + " simulate " + kScenes + "/closed_room.gltf --steps 1 --stats " + dir.path().string(),
+                              dir.path());
+  EXPECT_NE(into_dir.status, 0);
+  EXPECT_NE(into_dir.err.find("directory"), std::string::npos) << into_dir.err;
+}
+
+}  // namespace
+}  // namespace sp
