@@ -170,6 +170,35 @@ TEST_P(BackendPhysics, ManySourcesSplitTheBudget) {
   EXPECT_EQ(rays_of[6].size(), 14u);
 }
 
+class GpuLimits : public test::GpuTest {};
+
+TEST_F(GpuLimits, BudgetBeyondTheStorageBufferRangeFailsCleanly) {
+  // 2M rays of 80-byte state need 160 MB in one binding: beyond lavapipe's
+  // 128 MiB maxStorageBufferRange (and most GPUs' binding limits too).
+  Config config = base_config();
+  config.ray_budget = 2'000'000;
+  const auto range = test::GpuEnvironment::context()->properties().limits.maxStorageBufferRange;
+  if (std::uint64_t{config.ray_budget} * sizeof(shader::RayState) <= range) GTEST_SKIP() << "device range too large";
+  auto sim = gpu::create_simulator(make_world(closed_room(), config).value(), *test::GpuEnvironment::context());
+  ASSERT_FALSE(sim.ok());
+  EXPECT_EQ(sim.error().code, ErrorCode::LimitExceeded);
+  EXPECT_NE(sim.error().message.find("rays"), std::string::npos) << sim.error().message;
+  EXPECT_NE(sim.error().message.find("maxStorageBufferRange"), std::string::npos) << sim.error().message;
+}
+
+TEST_F(GpuLimits, StepsAfterTheBudgetSplitNeverExceedTheBuffers) {
+  // Budget 1 with 7 sources: one ray goes to source 0, the rest get none.
+  Scene scene = closed_room();
+  for (int k = 0; k < 6; ++k) scene.sources.push_back(test::source_at({-2.0f + 0.5f * float(k), 1.0f, 0.0f}));
+  Config config = base_config();
+  config.ray_budget = 1;
+  auto sim = make_simulator(make_world(scene, config).value(), Backend::Gpu);
+  for (int n = 0; n < 4; ++n) ASSERT_TRUE(sim->step().ok());
+  auto stats = sim->stats().value();
+  EXPECT_EQ(stats.rays_emitted, 4u);
+  for (const Indicator& ind : sim->last_step_indicators().value()) EXPECT_EQ(ind.source_id, 0u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, BackendPhysics, ::testing::Values(Backend::Cpu, Backend::Gpu),
                          [](const auto& test_info) { return std::string(test_info.param == Backend::Cpu ? "cpu" : "gpu"); });
 

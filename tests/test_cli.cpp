@@ -148,5 +148,42 @@ TEST(Cli, UnwritableOutputFailsBeforeSimulating) {
   EXPECT_NE(into_dir.err.find("directory"), std::string::npos) << into_dir.err;
 }
 
+TEST(Cli, WithoutAVulkanDeviceGpuFailsAndAutoFallsBackToCpu) {
+  ScratchDir dir("novulkan");
+  // Points the Vulkan loader at a driver manifest that does not exist.
+  const std::string no_driver = "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json ";
+  const std::string scene = kScenes + "/closed_room.gltf";
+  auto gpu = run_command(no_driver + kCli + " simulate " + scene + " --backend gpu --steps 2 --stats " +
+                             (dir / "gpu.json").string(),
+                         dir.path());
+  EXPECT_NE(gpu.status, 0);
+  EXPECT_NE(gpu.err.find("no Vulkan device"), std::string::npos) << gpu.err;
+  EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "gpu.json"));
+
+  auto fallback = run_command(no_driver + kCli + " simulate " + scene + " --steps 2 --stats " +
+                                  (dir / "auto.json").string(),
+                              dir.path());
+  ASSERT_EQ(fallback.status, 0) << fallback.err;
+  EXPECT_NE(fallback.err.find("using the CPU backend"), std::string::npos) << fallback.err;
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(dir / "auto.json"))["backend"], "cpu");
+}
+
+TEST(Cli, GpuBackendRunsCleanUnderTheValidationLayer) {
+  ScratchDir dir("gpu");
+  // Validation messages go to stderr, so a clean run leaves it empty.
+  auto r = run_command("SOUNDPAINT_VALIDATION=1 " + kCli + " simulate " + kScenes +
+                           "/two_rooms.gltf --backend gpu --steps 5 --stats " + (dir / "s.json").string() +
+                           " --indicators " + (dir / "i.csv").string(),
+                       dir.path());
+  if (r.status != 0 && r.err.find("no Vulkan device") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  auto stats = nlohmann::json::parse(test::read_text(dir / "s.json"));
+  EXPECT_EQ(stats["backend"], "gpu");
+  EXPECT_TRUE(stats["timing"].contains("gpu_ms_per_step_median"));
+  EXPECT_EQ(stats["indicators"].get<std::size_t>() + 1, lines(test::read_text(dir / "i.csv")).size());
+}
+
 }  // namespace
 }  // namespace sp

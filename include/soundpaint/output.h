@@ -45,7 +45,7 @@ double percentile(std::vector<double> values, double p);  // p in [0, 100], near
 
 // The stats JSON object of SPEC 4 as text.
 std::string stats_json(const World& world, const SimulationStats& stats, const char* backend_name,
-                       const StepTimings& timings);
+                       const std::string& device, const StepTimings& timings);
 
 // Writes `text` to `path` atomically (temporary file + rename).
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);

@@ -72,6 +72,10 @@ class Simulator {
   virtual ~Simulator() = default;
 
   virtual Backend backend() const = 0;
+
+  // What runs the simulation: the device and driver for the GPU backend,
+  // the thread count for the CPU backend.
+  virtual std::string device_description() const = 0;
   virtual const World& world() const = 0;
 
   // Runs the next step (registry, distribution, propagation). Step n runs at

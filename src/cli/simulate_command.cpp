@@ -63,7 +63,8 @@ int run_simulate(const std::vector<std::string>& args) {
   }
 
   SimulationStats stats = simulator->stats().value();
-  if (stats_file) stats_file->write(stats_json(simulator->world(), stats, backend_name(simulator->backend()), timings));
+  if (stats_file) stats_file->write(stats_json(simulator->world(), stats, backend_name(simulator->backend()),
+                                              simulator->device_description(), timings));
   if (csv) csv->commit();
   if (stats_file) stats_file->commit();
   std::printf("%llu steps on %s: %llu rays, %llu casts, %llu indicators, %.3f ms/step median\n",

@@ -79,6 +79,7 @@ class GpuSimulator final : public Simulator {
   ~GpuSimulator() override { vkDeviceWaitIdle(context_.device()); }
 
   Backend backend() const override { return Backend::Gpu; }
+  std::string device_description() const override { return context_.description(); }
   const World& world() const override { return world_; }
   std::uint64_t steps_run() const override { return steps_run_; }
   std::uint64_t last_step_casts() const override { return last_control_.step_casts; }

@@ -26,10 +26,11 @@ double percentile(std::vector<double> values, double p) {
 }
 
 std::string stats_json(const World& world, const SimulationStats& stats, const char* backend_name,
-                       const StepTimings& timings) {
+                       const std::string& device, const StepTimings& timings) {
   nlohmann::ordered_json json;
   json["steps"] = stats.steps;
   json["backend"] = backend_name;
+  json["device"] = device;
   json["casts"] = stats.casts;
   json["max_casts_per_step"] = stats.max_casts_per_step;
   json["rays_emitted"] = stats.rays_emitted;

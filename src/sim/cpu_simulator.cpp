@@ -33,6 +33,9 @@ class CpuSimulator final : public Simulator {
   }
 
   Backend backend() const override { return Backend::Cpu; }
+  std::string device_description() const override {
+    return "CPU, " + std::to_string(pool_.size()) + " thread" + (pool_.size() == 1 ? "" : "s");
+  }
   const World& world() const override { return world_; }
   std::uint64_t steps_run() const override { return steps_run_; }
   std::uint64_t last_step_casts() const override { return last_casts_; }
