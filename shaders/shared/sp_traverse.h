@@ -32,10 +32,10 @@ struct RayQuery {
   vec3 dir;
   float tmax;
   vec3 inv_dir;
-  uint kx;
+  int kx;      // int, not uint: GLM indexes with int, and clang's -Wconversion
   vec3 shear;  // Sx, Sy, Sz of Woop et al.
-  uint ky;
-  uint kz;
+  int ky;      // would flag every unsigned index
+  int kz;
 };
 
 SP_INLINE float sp_safe_inverse(float d) {
@@ -52,11 +52,11 @@ SP_INLINE RayQuery sp_make_query(vec3 origin, vec3 dir, float tmin, float tmax) 
   q.tmax = tmax;
   q.inv_dir = vec3(sp_safe_inverse(dir.x), sp_safe_inverse(dir.y), sp_safe_inverse(dir.z));
   vec3 a = abs(dir);
-  uint kz = (a.x > a.y) ? (a.x > a.z ? 0u : 2u) : (a.y > a.z ? 1u : 2u);
-  uint kx = (kz + 1u) % 3u;
-  uint ky = (kx + 1u) % 3u;
+  int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  int kx = (kz + 1) % 3;
+  int ky = (kx + 1) % 3;
   if (dir[kz] < 0.0f) {  // keep the winding, as Woop et al. do
-    uint tmp = kx;
+    int tmp = kx;
     kx = ky;
     ky = tmp;
   }
@@ -99,6 +99,12 @@ SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
   SP_PRECISE vec3 t1 = (bmax - q.origin) * q.inv_dir;
   vec3 tlo = min(t0, t1);
   vec3 thi = max(t0, t1);
+  // sp_safe_inverse saturates: for a ray parallel to a slab, (b - o) * inv_dir
+  // underestimates the exit (0 on a face plane), yet a ray inside the slab
+  // never leaves it.
+  for (int i = 0; i < 3; ++i) {
+    if (abs(q.dir[i]) <= 1.0e-20f && q.origin[i] >= bmin[i] && q.origin[i] <= bmax[i]) thi[i] = SP_FAR;
+  }
   float tnear = max(max(tlo.x, tlo.y), max(tlo.z, q.tmin));
   // 1 + 2 * gamma(3): keeps the test conservative under rounding (Ize 2013).
   float tfar = min(min(thi.x, thi.y), min(thi.z, tmax)) * 1.0000004f;
@@ -130,7 +136,8 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
       for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
         BvhTriangle tri = bvh_triangles[i];
         float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
-        if (t > q.tmin && t <= q.tmax && sp_better_hit(t, tri.scene_index, best.t, best_scene)) {
+        // t == SP_FAR is the triangle test's "miss", whatever tmax is.
+        if (t < SP_FAR && t > q.tmin && t <= q.tmax && sp_better_hit(t, tri.scene_index, best.t, best_scene)) {
           best.t = t;
           best.triangle = i;
           best_scene = tri.scene_index;

@@ -1,0 +1,362 @@
+// Binned SAH build of the BVH, written directly in the flattened layout of
+// shaders/shared/sp_types.h.
+//
+// References: Wald, "On fast Construction of SAH-based Bounding Volume
+// Hierarchies", IEEE Symposium on Interactive Ray Tracing 2007 (binning over
+// centroid bounds, incremental sweeps); MacDonald and Booth, "Heuristics for
+// ray tracing using space subdivision", The Visual Computer 6(3), 1990 (SAH).
+//
+// Shape of the work: one array of per-triangle bounds (with a parallel array
+// of input indices) is partitioned in place, so every node owns a contiguous
+// range and a leaf's range is directly its slice of Bvh::triangles. Children
+// are appended as a pair, which gives the adjacency the traversal relies on
+// without a separate flattening pass. Scratch memory is allocated once per
+// build; nodes of at most kSmallNode triangles, the large majority, take an
+// exact sweep instead of bins.
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "bvh/bvh_geometry.h"
+#include "soundpaint/bvh.h"
+
+namespace sp {
+namespace {
+
+// More bins rarely improve the tree but make every node visit slower; 256
+// also keeps the scratch arrays small.
+constexpr std::uint32_t kMaxBins = 256;
+// Up to this many triangles, sorting the centroids on each axis and sweeping
+// every split is cheaper than binning, and exact.
+constexpr std::uint32_t kSmallNode = 8;
+
+// One triangle's bounds. The centroid used for splitting is the bounds
+// centre, kept doubled (lo + hi) because only its order matters. 32 bytes, so
+// partitioning moves whole cache lines sequentially.
+struct Record {
+  Vec4 lo;
+  Vec4 hi;
+};
+
+// Maps doubled centroids to bins. Binning and partitioning call the same
+// function so both agree on every triangle's side.
+struct Binning {
+  Vec4 origin = {};  // doubled centroid minimum
+  Vec4 scale = {};   // bins / doubled centroid extent per axis; 0 for a flat axis
+  Vec4 last = {};    // bins - 1
+  std::uint32_t bins = 0;
+
+  Binning() = default;
+  Binning(const Box& centroids, std::uint32_t bin_count) : bins(bin_count) {
+    const auto top = static_cast<float>(bins - 1u);
+    origin = centroids.lo;
+    scale = Vec4{};
+    last = Vec4{top, top, top, top};
+    for (int a = 0; a < 3; ++a) {
+      float extent = centroids.hi[a] - centroids.lo[a];
+      float s = static_cast<float>(bins) / extent;
+      // A zero or subnormal extent cannot be binned (and would make NaNs).
+      scale[a] = (extent > 0.0f && std::isfinite(s)) ? s : 0.0f;
+    }
+  }
+  // Bins on all three axes at once. (c - origin) * scale lies in
+  // [0, bins * (1 + rounding)]; the top edge goes to the last bin. Clamped
+  // in float, where SSE2 has a vector min (minps) and integers have none.
+  Int4 bin(Vec4 doubled_centroid) const {
+    return __builtin_convertvector(vmin((doubled_centroid - origin) * scale, last), Int4);
+  }
+};
+
+// The best split found for a node.
+struct Split {
+  bool valid = false;
+  int axis = 0;
+  std::int32_t last_left = 0;  // binned: bins [0, last_left] go left; small: left count
+  float cost = 0.0f;           // A_L * N_L + A_R * N_R, not yet divided by A_parent
+};
+
+class Builder {
+ public:
+  Builder(std::span<const glm::vec3> vertices, std::uint32_t count, const BvhBuildSettings& settings, Bvh& bvh)
+      : bvh_(bvh) {
+    bins_ = std::clamp(settings.bins, 2u, kMaxBins);
+    max_leaf_size_ = std::max(settings.max_leaf_size, 1u);
+    max_depth_ = std::clamp(settings.max_depth, 1u, static_cast<std::uint32_t>(SP_BVH_MAX_DEPTH));
+    traversal_cost_ = settings.traversal_cost;
+
+    records_.resize(count);
+    indices_.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const glm::vec3* v = &vertices[3u * std::size_t{i}];
+      // Bounds of the vertices make_bvh_triangle stores: a degenerate
+      // triangle is collapsed onto v[0].
+      const Vec4 v0 = to_vec4(v[0]);
+      records_[i] = is_degenerate(v) ? Record{v0, v0}
+                                     : Record{vmin(vmin(v0, to_vec4(v[1])), to_vec4(v[2])),
+                                              vmax(vmax(v0, to_vec4(v[1])), to_vec4(v[2]))};
+      indices_[i] = i;
+    }
+    for (int a = 0; a < 3; ++a) {
+      bin_boxes_[a].resize(bins_);
+      bin_counts_[a].resize(bins_);
+    }
+    right_area_.resize(bins_);
+    right_count_.resize(bins_);
+    // A binary tree with n leaves has 2n - 1 nodes; reserving that bound
+    // means no reallocation during the build.
+    bvh_.nodes.reserve(2u * std::size_t{count} - 1u);
+  }
+
+  void build() {
+    Box bounds, centroids;
+    const auto count = static_cast<std::uint32_t>(records_.size());
+    measure(0, count, bounds, centroids);
+    bvh_.nodes.push_back(make_node(bounds));
+    subdivide(0, 0, count, 1, centroids);
+  }
+
+  // The input index of each leaf-order triangle.
+  const std::vector<std::uint32_t>& leaf_order() const { return indices_; }
+
+ private:
+  static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
+
+  // Bounds of [begin, end) and of its doubled centroids.
+  void measure(std::uint32_t begin, std::uint32_t end, Box& bounds, Box& centroids) const {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Record& r = records_[i];
+      bounds.grow(r.lo, r.hi);
+      centroids.grow(r.lo + r.hi);
+    }
+  }
+
+  void subdivide(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::uint32_t level,
+                 const Box& centroids) {
+    bvh_.depth = std::max(bvh_.depth, level);
+    const std::uint32_t count = end - begin;
+    // The depth cap overrides the leaf size: the traversal stack holds one
+    // entry per level and must never overflow.
+    if (count == 1u || level >= max_depth_) return make_leaf(node, begin, count);
+
+    const bool small = count <= kSmallNode;
+    Binning binning;
+    Split split;
+    if (small) {
+      split = find_small_split(begin, count);
+    } else {
+      // A node with fewer triangles than bins gets as many bins as
+      // triangles: the planes it loses lie between empty bins.
+      binning = Binning(centroids, std::min(bins_, count));
+      split = find_split(begin, end, binning);
+    }
+    if (count <= max_leaf_size_) {
+      // Small enough for a leaf: split only where the SAH says it pays off.
+      const BvhNode& n = bvh_.nodes[node];
+      const float parent_area = half_area(Box{to_vec4(n.bmin), to_vec4(n.bmax)});
+      const bool split_pays = split.valid && parent_area > 0.0f &&
+                              traversal_cost_ + split.cost / parent_area < static_cast<float>(count);
+      if (!split_pays) return make_leaf(node, begin, count);
+    }
+
+    std::uint32_t middle;
+    if (small) {
+      apply_small_split(begin, count, split);
+      middle = begin + static_cast<std::uint32_t>(split.last_left);
+    } else if (split.valid) {
+      middle = partition(begin, end, binning, split);
+    } else {
+      // All centroids coincide (or are too close to bin): no plane separates
+      // them, so halve the range to keep leaves within max_leaf_size.
+      middle = begin + count / 2u;
+    }
+    // One pass per child for bounds and centroid bounds: cheaper than
+    // carrying them through the partition with branch-free selects.
+    Box left, right, left_centroids, right_centroids;
+    measure(begin, middle, left, left_centroids);
+    measure(middle, end, right, right_centroids);
+
+    const auto children = static_cast<std::uint32_t>(bvh_.nodes.size());
+    bvh_.nodes[node].left_or_first = children;
+    bvh_.nodes[node].count = 0u;
+    bvh_.nodes.push_back(make_node(left));
+    bvh_.nodes.push_back(make_node(right));
+    subdivide(children, begin, middle, level + 1u, left_centroids);
+    subdivide(children + 1u, middle, end, level + 1u, right_centroids);
+  }
+
+  void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
+    bvh_.nodes[node].left_or_first = begin;
+    bvh_.nodes[node].count = count;
+  }
+
+  // Exact SAH for a small node: on each axis, sort by centroid (insertion
+  // sort; count <= kSmallNode) and sweep every split position. Coincident
+  // centroids still split by position, so the split is always valid.
+  Split find_small_split(std::uint32_t begin, std::uint32_t count) {
+    const Record* r = &records_[begin];
+    Split best;
+    if (count == 2u) {  // the most common case has one candidate, in place
+      best = Split{true, 0, 1, half_area(Box{r[0].lo, r[0].hi}) + half_area(Box{r[1].lo, r[1].hi})};
+      small_order_[0][0] = 0;
+      small_order_[0][1] = 1;
+      return best;
+    }
+    for (int a = 0; a < 3; ++a) {
+      std::uint8_t* order = small_order_[a];
+      float key[kSmallNode];
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const float k = r[i].lo[a] + r[i].hi[a];
+        std::uint32_t j = i;
+        for (; j > 0 && key[j - 1] > k; --j) {
+          key[j] = key[j - 1];
+          order[j] = order[j - 1];
+        }
+        key[j] = k;
+        order[j] = static_cast<std::uint8_t>(i);
+      }
+      float right_area[kSmallNode];
+      Box acc;
+      for (std::uint32_t i = count - 1u; i > 0u; --i) {
+        acc.grow(r[order[i]].lo, r[order[i]].hi);
+        right_area[i] = half_area(acc);
+      }
+      acc = Box{};
+      for (std::uint32_t left = 1; left < count; ++left) {
+        acc.grow(r[order[left - 1u]].lo, r[order[left - 1u]].hi);
+        const float cost = half_area(acc) * static_cast<float>(left) +
+                           right_area[left] * static_cast<float>(count - left);
+        if (!best.valid || cost < best.cost) best = Split{true, a, static_cast<std::int32_t>(left), cost};
+      }
+    }
+    return best;
+  }
+
+  // Reorders a small node by the winning axis's sort order.
+  void apply_small_split(std::uint32_t begin, std::uint32_t count, const Split& split) {
+    Record records[kSmallNode];
+    std::uint32_t indices[kSmallNode];
+    const std::uint8_t* order = small_order_[split.axis];
+    for (std::uint32_t i = 0; i < count; ++i) {
+      records[i] = records_[begin + order[i]];
+      indices[i] = indices_[begin + order[i]];
+    }
+    std::copy_n(records, count, &records_[begin]);
+    std::copy_n(indices, count, &indices_[begin]);
+  }
+
+  // Evaluates the bins - 1 planes of each axis with one pass over the
+  // triangles and two sweeps over the bins.
+  Split find_split(std::uint32_t begin, std::uint32_t end, const Binning& binning) {
+    const std::uint32_t bins = binning.bins;
+    for (int a = 0; a < 3; ++a) {
+      std::fill_n(bin_boxes_[a].begin(), bins, Box{});
+      std::fill_n(bin_counts_[a].begin(), bins, 0u);
+    }
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Record& r = records_[i];
+      const Int4 b = binning.bin(r.lo + r.hi);
+      for (int a = 0; a < 3; ++a) {
+        const auto k = static_cast<std::uint32_t>(b[a]);
+        bin_boxes_[a][k].grow(r.lo, r.hi);
+        bin_counts_[a][k] += 1u;
+      }
+    }
+
+    Split best;
+    for (int a = 0; a < 3; ++a) {
+      if (binning.scale[a] == 0.0f) continue;
+      const Box* boxes = bin_boxes_[a].data();
+      const std::uint32_t* counts = bin_counts_[a].data();
+      // Right-to-left sweep: area and count of bins [b, bins). An empty
+      // bin's box is empty, and growing by it changes nothing.
+      Box acc;
+      std::uint32_t n = 0;
+      for (std::uint32_t b = bins - 1u; b > 0u; --b) {
+        n += counts[b];
+        acc.grow(boxes[b]);
+        right_area_[b] = n > 0u ? half_area(acc) : 0.0f;
+        right_count_[b] = n;
+      }
+      // Left-to-right sweep: the plane after bin b.
+      acc = Box{};
+      n = 0;
+      for (std::uint32_t b = 0; b + 1u < bins; ++b) {
+        n += counts[b];
+        acc.grow(boxes[b]);
+        if (n == 0u || right_count_[b + 1u] == 0u) continue;
+        const float cost = half_area(acc) * static_cast<float>(n) +
+                           right_area_[b + 1u] * static_cast<float>(right_count_[b + 1u]);
+        if (!best.valid || cost < best.cost) best = Split{true, a, static_cast<std::int32_t>(b), cost};
+      }
+    }
+    return best;
+  }
+
+  // In-place partition by the chosen plane. Branch-free Lomuto: the side
+  // test is a coin flip for the branch predictor, so every element is swapped
+  // and `middle` advances only for left ones.
+  std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split) {
+    std::uint32_t middle = begin;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Record r = records_[i];
+      const std::uint32_t index = indices_[i];
+      const bool left = binning.bin(r.lo + r.hi)[split.axis] <= split.last_left;
+      records_[i] = records_[middle];
+      indices_[i] = indices_[middle];
+      records_[middle] = r;
+      indices_[middle] = index;
+      middle += left ? 1u : 0u;
+    }
+    return middle;
+  }
+
+  Bvh& bvh_;
+  std::uint32_t bins_ = 16;
+  std::uint32_t max_leaf_size_ = 4;
+  std::uint32_t max_depth_ = SP_BVH_MAX_DEPTH;
+  float traversal_cost_ = 1.0f;
+  std::vector<Record> records_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<Box> bin_boxes_[3];  // per axis
+  std::vector<std::uint32_t> bin_counts_[3];
+  std::vector<float> right_area_;
+  std::vector<std::uint32_t> right_count_;
+  std::uint8_t small_order_[3][kSmallNode] = {};  // per axis, from find_small_split
+};
+
+}  // namespace
+
+Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
+              const BvhBuildSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  assert(vertices.size() == 3u * layers.size() && "3 vertices and 1 layer per triangle");
+  // Never read past either array, even if the precondition is broken.
+  const auto count = static_cast<std::uint32_t>(std::min(vertices.size() / 3u, layers.size()));
+  Bvh bvh;
+  if (count == 0u) return bvh;
+
+  Builder builder(vertices, count, settings, bvh);
+  builder.build();
+
+  bvh.triangles.reserve(count);  // not resize(): every element is written once
+  const std::vector<std::uint32_t>& order = builder.leaf_order();
+  // A gather in random order: prefetching a few triangles ahead hides most
+  // of the cache misses.
+  constexpr std::uint32_t kPrefetch = 16;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (i + kPrefetch < count) {
+      const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
+      __builtin_prefetch(ahead);
+      __builtin_prefetch(ahead + 2);
+    }
+    const std::uint32_t source = order[i];
+    bvh.triangles.push_back(make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source));
+  }
+  bvh.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
+
+}  // namespace sp

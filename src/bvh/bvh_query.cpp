@@ -1,0 +1,34 @@
+// Closest-hit queries on the CPU. The BVH path runs the traversal shared with
+// the GPU (shaders/shared/sp_traverse.h) so both backends agree bit for bit;
+// the brute-force path is the reference the tests compare it against.
+#include "soundpaint/bvh.h"
+#include "sp_traverse.h"
+
+namespace sp {
+
+HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  // The shared traversal reads nodes[0] unconditionally.
+  if (bvh.nodes.empty()) return HitInfo{tmax, SP_INVALID};
+  return shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
+}
+
+HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
+  // Same start state and acceptance rule as sp_closest_hit, so that only the
+  // pruning differs between the two; except that a miss (SP_FAR) is never a
+  // hit, even when tmax == SP_FAR.
+  HitInfo best{tmax, SP_INVALID};
+  std::uint32_t best_scene = SP_INVALID;
+  for (std::size_t i = 0; i < bvh.triangles.size(); ++i) {
+    const BvhTriangle& tri = bvh.triangles[i];
+    float t = shader::sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+    if (t < SP_FAR && t > q.tmin && t <= q.tmax && shader::sp_better_hit(t, tri.scene_index, best.t, best_scene)) {
+      best.t = t;
+      best.triangle = static_cast<std::uint32_t>(i);
+      best_scene = tri.scene_index;
+    }
+  }
+  return best;
+}
+
+}  // namespace sp
