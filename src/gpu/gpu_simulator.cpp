@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <tuple>
 
@@ -158,6 +159,16 @@ class GpuSimulator final : public Simulator {
     }, ErrorCode::Vulkan);
   }
 
+  IndicatorView view() {
+    IndicatorView v;
+    v.context = &context_;
+    v.ring = resources_.ring.get();
+    v.ring_capacity = resources_.ring_capacity;
+    v.draw_args = resources_.control.get();
+    v.draw_args_offset = offsetof(shader::Control, draw_vertex_count);
+    return v;
+  }
+
   std::optional<double> last_gpu_ms() const override {
     if (!timestamps_) return std::nullopt;
     return last_gpu_ms_;
@@ -210,6 +221,11 @@ class GpuSimulator final : public Simulator {
 };
 
 }  // namespace
+
+std::optional<IndicatorView> indicator_view(Simulator& simulator) {
+  if (auto* gpu = dynamic_cast<GpuSimulator*>(&simulator)) return gpu->view();
+  return std::nullopt;
+}
 
 Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context) {
   return capture_errors([&]() -> std::unique_ptr<Simulator> {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "soundpaint/simulation.h"
 #include "vk/context.h"
@@ -11,5 +12,21 @@ namespace sp::gpu {
 // Creates a GPU simulator on `context`, which must outlive it (tests share
 // one context per binary this way).
 Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context);
+
+// Where a GPU simulator keeps its indicators, for a draw pass on the same
+// device: the ring of shader::Indicator and the VkDrawIndirectCommand whose
+// instanceCount the compute pass keeps equal to the ring's filled slots
+// (6 vertices per instance). Both are written by each step's compute work;
+// a draw recorded after Simulator::step() returned sees that step's state.
+struct IndicatorView {
+  vk::Context* context = nullptr;
+  VkBuffer ring = VK_NULL_HANDLE;          // STORAGE_BUFFER, ring_capacity entries
+  std::uint32_t ring_capacity = 0;
+  VkBuffer draw_args = VK_NULL_HANDLE;     // INDIRECT_BUFFER
+  VkDeviceSize draw_args_offset = 0;
+};
+
+// The view of `simulator` if it is this GPU backend, else nothing.
+std::optional<IndicatorView> indicator_view(Simulator& simulator);
 
 }  // namespace sp::gpu
