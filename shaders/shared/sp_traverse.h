@@ -36,6 +36,7 @@ struct RayQuery {
   vec3 shear;  // Sx, Sy, Sz of Woop et al.
   int ky;      // would flag every unsigned index
   int kz;
+  uint parallel_axes;  // bit i: |dir[i]| <= 1e-20, the slab test needs care
 };
 
 SP_INLINE float sp_safe_inverse(float d) {
@@ -51,6 +52,8 @@ SP_INLINE RayQuery sp_make_query(vec3 origin, vec3 dir, float tmin, float tmax) 
   q.tmin = tmin;
   q.tmax = tmax;
   q.inv_dir = vec3(sp_safe_inverse(dir.x), sp_safe_inverse(dir.y), sp_safe_inverse(dir.z));
+  q.parallel_axes = (abs(dir.x) <= 1.0e-20f ? 1u : 0u) | (abs(dir.y) <= 1.0e-20f ? 2u : 0u) |
+                    (abs(dir.z) <= 1.0e-20f ? 4u : 0u);
   vec3 a = abs(dir);
   int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
   int kx = (kz + 1) % 3;
@@ -102,8 +105,11 @@ SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
   // sp_safe_inverse saturates: for a ray parallel to a slab, (b - o) * inv_dir
   // underestimates the exit (0 on a face plane), yet a ray inside the slab
   // never leaves it.
-  for (int i = 0; i < 3; ++i) {
-    if (abs(q.dir[i]) <= 1.0e-20f && q.origin[i] >= bmin[i] && q.origin[i] <= bmax[i]) thi[i] = SP_FAR;
+  if (q.parallel_axes != 0u) {
+    for (int i = 0; i < 3; ++i) {
+      bool parallel = (q.parallel_axes & (1u << uint(i))) != 0u;
+      if (parallel && q.origin[i] >= bmin[i] && q.origin[i] <= bmax[i]) thi[i] = SP_FAR;
+    }
   }
   float tnear = max(max(tlo.x, tlo.y), max(tlo.z, q.tmin));
   // 1 + 2 * gamma(3): keeps the test conservative under rounding (Ize 2013).
