@@ -169,6 +169,22 @@ TEST(Cli, WithoutAVulkanDeviceGpuFailsAndAutoFallsBackToCpu) {
   EXPECT_EQ(nlohmann::json::parse(test::read_text(dir / "auto.json"))["backend"], "cpu");
 }
 
+TEST(Cli, AutoNeverPicksACpuVulkanDevice) {
+  // lavapipe is a CPU behind Vulkan: there the CPU backend is faster, so
+  // auto must use it (and say why); on a hardware GPU auto uses the GPU.
+  ScratchDir dir("auto");
+  auto r = run_command(kCli + " simulate " + kScenes + "/closed_room.gltf --steps 2 --stats " +
+                           (dir / "s.json").string(),
+                       dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto stats = nlohmann::json::parse(test::read_text(dir / "s.json"));
+  if (stats["backend"] == "gpu") {
+    EXPECT_EQ(stats["device"].get<std::string>().find("llvmpipe"), std::string::npos) << stats["device"];
+  } else {
+    EXPECT_NE(r.err.find("using the CPU backend"), std::string::npos) << r.err;
+  }
+}
+
 TEST(Cli, GpuBackendRunsCleanUnderTheValidationLayer) {
   ScratchDir dir("gpu");
   // Validation messages go to stderr, so a clean run leaves it empty.

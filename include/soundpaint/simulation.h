@@ -60,6 +60,10 @@ enum class Backend { Cpu, Gpu };
 struct GpuSettings {
   bool validation = false;  // Khronos validation layer (also SOUNDPAINT_VALIDATION=1)
   std::string device_name;  // substring of the device to use; empty: SOUNDPAINT_DEVICE, else the best
+  // Accept a device that is a CPU in disguise (lavapipe / llvmpipe). When
+  // false and that is all there is, creation fails with ErrorCode::Vulkan:
+  // the CPU backend is faster on the same cores.
+  bool allow_cpu_device = true;
 };
 
 struct CpuSettings {

@@ -243,6 +243,9 @@ Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSe
     context_settings.validation = settings.validation;
     context_settings.device_name = settings.device_name;
     std::unique_ptr<vk::Context> context = vk::Context::create(context_settings).value();
+    if (!settings.allow_cpu_device && context->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+      throw Exception(ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
+                                             std::string(context->properties().deviceName) + ")");
     vk::Context& ref = *context;
     return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
   }, ErrorCode::Vulkan);
