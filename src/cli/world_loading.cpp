@@ -51,7 +51,10 @@ std::unique_ptr<Simulator> create_simulator_on(vk::Context& context, World world
   // The same policy as create_simulator: auto wants a real GPU, since on a
   // CPU-only Vulkan device the CPU backend does the same work faster.
   const bool cpu_device = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  if (backend == BackendChoice::Gpu || (backend == BackendChoice::Auto && !cpu_device)) {
+  if (backend == BackendChoice::Auto && cpu_device) {
+    std::fprintf(stderr, "soundpaint: GPU backend not used (the only Vulkan device is a CPU device (%s)); "
+                 "using the CPU backend\n", context.properties().deviceName);
+  } else if (backend != BackendChoice::Cpu) {
     auto gpu = gpu::create_simulator(world, context);
     if (gpu) return std::move(gpu.value());
     if (backend == BackendChoice::Gpu || gpu.error().code != ErrorCode::Vulkan) throw Exception(gpu.error());

@@ -1,0 +1,133 @@
+#include "draw/graphics_pipeline.h"
+
+#include <string>
+
+#include "soundpaint/result.h"
+#include "vk/vk_check.h"
+
+namespace sp::draw {
+namespace {
+
+vk::UniqueShaderModule make_module(const vk::Context& context, std::span<const std::uint32_t> spirv,
+                                   const std::string& name) {
+  if (spirv.empty()) throw Exception(ErrorCode::InvalidArgument, name + ": no SPIR-V code");
+  VkShaderModuleCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  info.codeSize = spirv.size_bytes();
+  info.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
+  context.set_name(VK_OBJECT_TYPE_SHADER_MODULE, module, name.c_str());
+  return vk::UniqueShaderModule(context.device(), module);
+}
+
+}  // namespace
+
+GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPipelineDesc& desc) {
+  const std::string label = desc.name != nullptr ? desc.name : "graphics pipeline";
+  const VkDevice device = context.device();
+
+  const VkPushConstantRange push_range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                       desc.push_constant_bytes};
+  VkPipelineLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &desc.set_layout;
+  layout_info.pushConstantRangeCount = desc.push_constant_bytes > 0 ? 1 : 0;
+  layout_info.pPushConstantRanges = &push_range;
+  VkPipelineLayout raw_layout = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, nullptr, &raw_layout));
+  layout_ = vk::UniquePipelineLayout(device, raw_layout);
+  context.set_name(VK_OBJECT_TYPE_PIPELINE_LAYOUT, raw_layout, (label + " layout").c_str());
+
+  // Only needed until the pipeline exists.
+  const vk::UniqueShaderModule vertex = make_module(context, desc.vertex_spirv, label + " vertex");
+  const vk::UniqueShaderModule fragment = make_module(context, desc.fragment_spirv, label + " fragment");
+  VkPipelineShaderStageCreateInfo stages[2]{};
+  for (VkPipelineShaderStageCreateInfo& stage : stages) {
+    stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stage.pName = "main";
+  }
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vertex.get();
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fragment.get();
+
+  // Vertex pulling: the shaders read storage buffers, so no bindings or attributes.
+  VkPipelineVertexInputStateCreateInfo vertex_input{};
+  vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  VkPipelineInputAssemblyStateCreateInfo assembly{};
+  assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{};
+  viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{};
+  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{};
+  multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  depth.depthTestEnable = VK_TRUE;
+  depth.depthWriteEnable = desc.depth_write ? VK_TRUE : VK_FALSE;
+  // LESS_OR_EQUAL: a lifted indicator exactly level with a surface still shows.
+  depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+
+  VkPipelineColorBlendAttachmentState attachment{};
+  attachment.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  if (desc.blend == Blend::Alpha) {
+    attachment.blendEnable = VK_TRUE;
+    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.colorBlendOp = VK_BLEND_OP_ADD;
+    // Alpha becomes a + dst * (1 - a): it stays 1 over the opaque scene.
+    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
+  VkPipelineColorBlendStateCreateInfo blend{};
+  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  blend.attachmentCount = 1;
+  blend.pAttachments = &attachment;
+
+  const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{};
+  dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamic_states;
+
+  // Dynamic rendering: the attachment formats replace a render pass.
+  VkPipelineRenderingCreateInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &desc.color_format;
+  rendering.depthAttachmentFormat = desc.depth_format;
+
+  VkGraphicsPipelineCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  info.pNext = &rendering;
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertex_input;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamic;
+  info.layout = raw_layout;
+  VkPipeline raw_pipeline = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &raw_pipeline));
+  pipeline_ = vk::UniquePipeline(device, raw_pipeline);
+  context.set_name(VK_OBJECT_TYPE_PIPELINE, raw_pipeline, label.c_str());
+}
+
+}  // namespace sp::draw

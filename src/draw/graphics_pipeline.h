@@ -1,0 +1,47 @@
+// A graphics pipeline for dynamic rendering (no render pass, no framebuffer)
+// whose vertices are pulled from storage buffers: no vertex input state.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+
+#include "vk/context.h"
+#include "vk/handle.h"
+
+namespace sp::draw {
+
+enum class Blend {
+  Opaque,  // colour replaces the target
+  Alpha,   // straight alpha: src * a + dst * (1 - a)
+};
+
+struct GraphicsPipelineDesc {
+  std::span<const std::uint32_t> vertex_spirv;  // embedded SPIR-V, entry point "main"
+  std::span<const std::uint32_t> fragment_spirv;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;  // set 0
+  std::uint32_t push_constant_bytes = 0;              // one range, vertex + fragment stages
+  VkFormat color_format = VK_FORMAT_UNDEFINED;
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;
+  Blend blend = Blend::Opaque;
+  bool depth_write = true;                 // depth test (LESS_OR_EQUAL) is always on
+  const char* name = "graphics pipeline";  // debug name
+};
+
+// Triangle lists, no culling (the level's surfaces are seen from both
+// sides), dynamic viewport and scissor. Throws sp::Exception on failure.
+class GraphicsPipeline {
+ public:
+  GraphicsPipeline() = default;
+  GraphicsPipeline(const vk::Context& context, const GraphicsPipelineDesc& desc);
+
+  VkPipeline get() const { return pipeline_.get(); }
+  VkPipelineLayout layout() const { return layout_.get(); }
+
+ private:
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
+}  // namespace sp::draw

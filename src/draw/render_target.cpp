@@ -1,0 +1,182 @@
+#include "draw/render_target.h"
+
+#include <cstring>
+#include <string>
+
+#include "draw/image_barrier.h"
+#include "soundpaint/result.h"
+#include "vk/barriers.h"
+#include "vk/vk_check.h"
+
+namespace sp::draw {
+
+DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::uint32_t height, VkFormat format,
+                         VkImageUsageFlags usage, VkImageAspectFlags aspect, const char* name) {
+  const VkDevice device = context.device();
+  VkImageCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImage raw_image = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateImage(device, &info, nullptr, &raw_image));
+  image_ = vk::UniqueImage(device, raw_image);
+  context.set_name(VK_OBJECT_TYPE_IMAGE, raw_image, name);
+
+  VkMemoryRequirements requirements{};
+  vkGetImageMemoryRequirements(device, raw_image, &requirements);
+  VkMemoryAllocateInfo allocate{};
+  allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  allocate.allocationSize = requirements.size;
+  allocate.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory raw_memory = VK_NULL_HANDLE;
+  const VkResult result = vkAllocateMemory(device, &allocate, nullptr, &raw_memory);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    throw Exception(Error{ErrorCode::LimitExceeded,
+                          std::string(name) + ": cannot allocate " + std::to_string(requirements.size) + " bytes (" +
+                              vk::result_name(result) + ")",
+                          static_cast<int>(result)});
+  }
+  SP_VK_CHECK(result);
+  memory_ = vk::UniqueMemory(device, raw_memory);
+  context.set_name(VK_OBJECT_TYPE_DEVICE_MEMORY, raw_memory, (std::string(name) + " memory").c_str());
+  SP_VK_CHECK(vkBindImageMemory(device, raw_image, raw_memory, 0));
+
+  // Views are for attachments; transfers address the image itself.
+  if ((usage & (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT)) == 0) return;
+  VkImageViewCreateInfo view_info{};
+  view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  view_info.image = raw_image;
+  view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view_info.format = format;
+  view_info.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkImageView raw_view = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &raw_view));
+  view_ = vk::UniqueImageView(device, raw_view);
+  context.set_name(VK_OBJECT_TYPE_IMAGE_VIEW, raw_view, (std::string(name) + " view").c_str());
+}
+
+RenderTarget::RenderTarget(const vk::Context& context, std::uint32_t width, std::uint32_t height)
+    : width_(width), height_(height) {
+  const std::uint32_t max_dimension = context.properties().limits.maxImageDimension2D;
+  if (width == 0 || height == 0 || width > max_dimension || height > max_dimension) {
+    throw Exception(ErrorCode::LimitExceeded, "image size " + std::to_string(width) + "x" + std::to_string(height) +
+                                                  " is outside 1.." + std::to_string(max_dimension) +
+                                                  " (the device's maxImageDimension2D)");
+  }
+  color_ = DeviceImage(context, width, height, kColorFormat,
+                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                       "render colour");
+  // Blits between these formats (BLIT_SRC of RGBA16F, BLIT_DST of RGBA8
+  // sRGB) are features every Vulkan device must support.
+  output_ = DeviceImage(context, width, height, kOutputFormat,
+                        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                        "render output");
+  depth_ = DeviceImage(context, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                       VK_IMAGE_ASPECT_DEPTH_BIT, "render depth");
+  readback_ = vk::Buffer(context, VkDeviceSize{width} * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::MemoryUsage::Readback, "render readback");
+}
+
+void RenderTarget::begin(VkCommandBuffer cmd, const float (&clear)[4]) const {
+  // WAR: the previous frame's blit out of the colour image (an earlier
+  // submission) finishes before this frame's clear overwrites it.
+  image_barrier(cmd, color_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_NONE,
+                VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  // WAW: the previous frame's depth tests finish before this frame's clear.
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  image_barrier(cmd, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                depth_stages,
+                VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+  VkRenderingAttachmentInfo color{};
+  color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  color.imageView = color_.view();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  std::memcpy(color.clearValue.color.float32, clear, sizeof clear);
+  VkRenderingAttachmentInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  depth.imageView = depth_.view();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // depth is not needed after the frame
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, {width_, height_}};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  rendering.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &rendering);
+
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width_), static_cast<float>(height_), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {width_, height_}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void RenderTarget::end_and_copy(VkCommandBuffer cmd) const {
+  vkCmdEndRendering(cmd);
+  // RAW: the frame's colour writes land before the blit reads the image.
+  image_barrier(cmd, color_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  // WAR: the previous frame's copy out of the output image finishes before
+  // the blit overwrites it (its old contents are discarded).
+  image_barrier(cmd, output_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  // Same size, so the blit only converts: half float to 8-bit sRGB.
+  VkImageBlit2 region{};
+  region.sType = VK_STRUCTURE_TYPE_IMAGE_BLIT_2;
+  region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.srcOffsets[1] = {static_cast<std::int32_t>(width_), static_cast<std::int32_t>(height_), 1};
+  region.dstSubresource = region.srcSubresource;
+  region.dstOffsets[1] = region.srcOffsets[1];
+  VkBlitImageInfo2 blit{};
+  blit.sType = VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2;
+  blit.srcImage = color_.image();
+  blit.srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  blit.dstImage = output_.image();
+  blit.dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  blit.regionCount = 1;
+  blit.pRegions = &region;
+  blit.filter = VK_FILTER_NEAREST;
+  vkCmdBlitImage2(cmd, &blit);
+  // RAW: the converted pixels land before the copy reads them.
+  image_barrier(cmd, output_.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {width_, height_, 1};
+  vkCmdCopyImageToBuffer(cmd, output_.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.get(), 1, &copy);
+  // RAW (device -> host): the copied pixels become visible to read() after
+  // the fence; the fence alone would not make them visible.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+}
+
+RgbaImage RenderTarget::read() const {
+  RgbaImage image;
+  image.width = width_;
+  image.height = height_;
+  image.pixels.resize(std::size_t{width_} * height_ * 4);
+  std::memcpy(image.pixels.data(), readback_.mapped(), image.pixels.size());
+  return image;
+}
+
+}  // namespace sp::draw

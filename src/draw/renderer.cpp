@@ -1,0 +1,86 @@
+#include "draw/renderer.h"
+
+#include "vk/barriers.h"
+#include "vk/vk_check.h"
+
+namespace sp::draw {
+
+Renderer::Renderer(vk::Context& context, const World& world, const RenderSettings& settings)
+    : context_(context),
+      listener_(world.listener),
+      target_(context, settings.width, settings.height),
+      scene_(context, build_scene_mesh(world, settings.markers), RenderTarget::kColorFormat,
+             RenderTarget::kDepthFormat),
+      indicators_(context, RenderTarget::kColorFormat, RenderTarget::kDepthFormat) {
+  // Timestamps are optional; this limit promises them on every graphics and
+  // compute queue, so the context's queue family need not be asked.
+  if (context_.properties().limits.timestampComputeAndGraphics) {
+    const VkDevice device = context_.device();
+    VkQueryPoolCreateInfo query_info{};
+    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    query_info.queryCount = kQueries;
+    VkQueryPool query_pool = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
+    timestamps_ = vk::UniqueQueryPool(device, query_pool);
+    context_.set_name(VK_OBJECT_TYPE_QUERY_POOL, query_pool, "render timestamps");
+  }
+}
+
+RgbaImage Renderer::render(const ViewCamera& camera, Simulator& simulator) {
+  const World& world = simulator.world();
+  IndicatorClock clock;
+  const std::uint64_t steps = simulator.steps_run();
+  clock.current_step = steps > 0 ? static_cast<std::uint32_t>(steps - 1) : 0u;
+  clock.dt = static_cast<float>(world.config.dt);
+  clock.lifetime = world.config.indicator_lifetime;
+  if (auto view = gpu::indicator_view(simulator); view && view->context == &context_)
+    return render(camera, *view, clock);
+  // Another backend (or another device): the indicators come through the host.
+  if (!host_indicators_) host_indicators_.emplace(context_);
+  host_indicators_->upload(simulator.live_indicators().value());
+  return render(camera, host_indicators_->view(), clock);
+}
+
+RgbaImage Renderer::render(const ViewCamera& camera, const gpu::IndicatorView& indicators,
+                           const IndicatorClock& clock) {
+  indicators_.bind(indicators);  // the previous frame has finished: the set is free to update
+  // One command buffer per frame, submitted and waited for: a picture is
+  // read back right away, so there is nothing to overlap.
+  context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    const VkQueryPool queries = timestamps_.get();
+    if (queries != VK_NULL_HANDLE) {
+      vkCmdResetQueryPool(cmd, queries, 0, kQueries);
+      vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries, 0);
+    }
+    // RAW: the ring and the VkDrawIndirectCommand were written by a compute
+    // step in an earlier submission; its fence told the host it finished,
+    // but only a barrier makes those writes visible to this frame's vertex
+    // shader and indirect-argument read. (Host-written rings need nothing: a
+    // submit makes earlier host writes to coherent memory visible.)
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    target_.begin(cmd, ScenePass::kClearColor);
+    scene_.record(cmd, camera, listener_);
+    if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
+    indicators_.record(cmd, camera, indicators, clock);
+    if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 2);
+    target_.end_and_copy(cmd);
+    if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 3);
+  });
+  read_timestamps();
+  return target_.read();
+}
+
+void Renderer::read_timestamps() {
+  if (!timestamps_) return;
+  std::uint64_t ticks[kQueries] = {};
+  SP_VK_CHECK(vkGetQueryPoolResults(context_.device(), timestamps_.get(), 0, kQueries, sizeof ticks, ticks,
+                                    sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const double ms_per_tick = context_.properties().limits.timestampPeriod * 1e-6;
+  auto between = [&](int from, int to) { return static_cast<double>(ticks[to] - ticks[from]) * ms_per_tick; };
+  last_timings_ = FrameTimings{between(0, 1), between(1, 2), between(0, 3)};
+}
+
+}  // namespace sp::draw
