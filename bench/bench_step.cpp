@@ -1,161 +1,174 @@
-// Step benchmark: ms per step (wall and GPU timestamps) and casts per second
-// for each backend and ray budget, on one scene. Before timing it checks that
-// the backends agree (same indicator and cast counts over a few steps); then
-// it warms up and reports the median over several runs.
+// Step benchmark, the paper's Figure 6 workload by default: ms per step
+// (median and p99 of wall time, and GPU timestamps), casts per second,
+// indicators per step and the overhead over the same frame loop without
+// soundpaint, for each backend and ray budget on one scene.
 //
-//   bench_step --scene scenes/level.gltf --backends cpu,gpu --budgets 100,500,2500 --steps 300 --runs 5
-#include <algorithm>
-#include <chrono>
+// The frame loop (bench_common.h): each frame moves the listener along a
+// slow circle (set_listener) and runs one step. The baseline is the same
+// loop without soundpaint, i.e. the host's bookkeeping alone (computing the
+// player position and reading the clock), timed the same way; the overhead
+// is median(frame) - median(baseline). The paper's Unity figures (1.04 /
+// 1.34 / 2.23 ms at 100 / 500 / 2500 rays) are frame time with the
+// visualization minus without, rendering of the indicators included; this
+// loop renders nothing.
+//
+// Before timing, the backends must agree (indicator, cast and ray totals over
+// a few steps); each run then warms up and measures; the table shows medians
+// over the runs.
+//
+//   bench_step --scene scenes/level.gltf --backends cpu,gpu --budgets 100,500,2500 --steps 2000 --runs 3
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
+#include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "soundpaint/output.h"
-#include "soundpaint/simulation.h"
+#include "bench_common.h"
 
 namespace {
+
+using spbench::CommandLine;
+
+constexpr const char* kUsage =
+    "usage: bench_step [--scene FILE|gen:TRIANGLES] [--backends cpu,gpu] [--budgets A,B,...]\n"
+    "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
+    "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json]\n"
+    "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
+    "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
+    "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
+    "  --runs         fresh simulators per backend and budget; the table shows medians over runs (default 3)\n"
+    "  --max-seconds  stop a run's measuring after S seconds, its warm-up after S/5 (default 0: no limit)\n"
+    "  --pattern      paper: every source plays every 0.25 s for 0.1 s, phases staggered (default);\n"
+    "                 burst: every 0.25 s for one step; scene: as the scene file says\n"
+    "  --validate-steps  frames each backend runs for the agreement check (default 10; 0 skips it)\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
   std::vector<std::string> backends = {"cpu", "gpu"};
   std::vector<std::uint32_t> budgets = {100, 500, 2500};
-  std::uint32_t steps = 300;
-  std::uint32_t warmup = 30;
-  std::uint32_t runs = 5;
+  spbench::LoopSettings loop{60, 2000, 0.0};
+  std::uint32_t runs = 3;
   std::uint32_t bounces = 4;
   unsigned threads = 0;
+  spbench::Pattern pattern = spbench::Pattern::Paper;
+  std::uint32_t validate_steps = 10;
+  std::string json;
 };
 
-[[noreturn]] void usage(const std::string& problem) {
-  std::fprintf(stderr,
-               "bench_step: %s\nusage: bench_step [--scene FILE] [--backends cpu,gpu] [--budgets A,B,...]\n"
-               "                  [--steps N] [--warmup N] [--runs R] [--bounces B] [--threads T]\n",
-               problem.c_str());
-  std::exit(2);
-}
-
-std::uint32_t to_uint(const std::string& text, const std::string& flag) {
-  try {
-    std::size_t used = 0;
-    unsigned long value = std::stoul(text, &used);
-    if (used != text.size() || value > 0xFFFFFFFFul) throw std::invalid_argument(text);
-    return static_cast<std::uint32_t>(value);
-  } catch (const std::exception&) {
-    usage("bad value for " + flag + ": " + text);
-  }
-}
-
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> items;
-  std::stringstream stream(list);
-  for (std::string item; std::getline(stream, item, ',');) items.push_back(item);
-  return items;
-}
-
-Options parse(int argc, char** argv) {
+Options parse(const CommandLine& cli, int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    std::string flag = argv[i];
-    if (i + 1 >= argc) usage("missing value for " + flag);
-    std::string value = argv[++i];
+  cli.parse(argc, argv, [&](const std::string& flag, const std::string& value) {
     if (flag == "--scene") o.scene = value;
-    else if (flag == "--backends") o.backends = split(value);
-    else if (flag == "--budgets") {
-      o.budgets.clear();
-      for (const auto& item : split(value)) o.budgets.push_back(to_uint(item, flag));
-    } else if (flag == "--steps") o.steps = to_uint(value, flag);
-    else if (flag == "--warmup") o.warmup = to_uint(value, flag);
-    else if (flag == "--runs") o.runs = to_uint(value, flag);
-    else if (flag == "--bounces") o.bounces = to_uint(value, flag);
-    else if (flag == "--threads") o.threads = to_uint(value, flag);
-    else usage("unknown flag " + flag);
-  }
-  if (o.steps == 0 || o.runs == 0) usage("--steps and --runs must be > 0");
+    else if (flag == "--backends") o.backends = CommandLine::split(value);
+    else if (flag == "--budgets") o.budgets = cli.to_uint_list(value, flag);
+    else if (flag == "--steps") o.loop.steps = cli.to_uint(value, flag);
+    else if (flag == "--warmup") o.loop.warmup = cli.to_uint(value, flag);
+    else if (flag == "--max-seconds") o.loop.max_seconds = cli.to_double(value, flag);
+    else if (flag == "--runs") o.runs = cli.to_uint(value, flag);
+    else if (flag == "--bounces") o.bounces = cli.to_uint(value, flag);
+    else if (flag == "--threads") o.threads = cli.to_uint(value, flag);
+    else if (flag == "--validate-steps") o.validate_steps = cli.to_uint(value, flag);
+    else if (flag == "--json") o.json = value;
+    else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
+    else return false;
+    return true;
+  });
+  if (o.loop.steps == 0 || o.runs == 0) cli.fail("--steps and --runs must be > 0");
+  if (o.backends.empty() || o.budgets.empty()) cli.fail("--backends and --budgets must not be empty");
   for (const auto& b : o.backends)
-    if (b != "cpu" && b != "gpu") usage("unknown backend " + b);
+    if (b != "cpu" && b != "gpu") cli.fail("unknown backend " + b);
   return o;
 }
 
-std::unique_ptr<sp::Simulator> make(const sp::Scene& scene, const Options& o, const std::string& backend,
-                                    std::uint32_t budget) {
-  sp::Config config;
-  config.ray_budget = budget;
-  config.max_bounces = o.bounces;
-  sp::World world = sp::make_world(scene, config).value();
-  if (backend == "gpu") return std::move(sp::create_gpu_simulator(std::move(world)).value());
-  return std::move(sp::create_cpu_simulator(std::move(world), sp::CpuSettings{o.threads}).value());
+// The paper's Unity overhead per frame (ms) at its three budgets.
+const std::map<std::uint32_t, double> kPaperOverheadMs = {{100, 1.04}, {500, 1.34}, {2500, 2.23}};
+
+std::string format(const char* format_string, double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, format_string, value);
+  return text;
 }
 
-// The backends must agree before their speeds mean anything.
-bool validate(const sp::Scene& scene, const Options& o, std::uint32_t budget) {
-  if (o.backends.size() < 2) return true;
-  std::uint64_t indicators[2] = {}, casts[2] = {};
-  for (int b = 0; b < 2; ++b) {
-    auto sim = make(scene, o, o.backends[static_cast<std::size_t>(b)], budget);
-    for (int n = 0; n < 10; ++n) sim->step().value();
-    auto stats = sim->stats().value();
-    indicators[b] = stats.indicators;
-    casts[b] = stats.casts;
+int run(const CommandLine& cli, const Options& options) {
+  sp::Scene scene = spbench::load_scene_or_exit(cli, options.scene);
+  sp::Config config;
+  config.max_bounces = options.bounces;
+  spbench::apply_pattern(scene, options.pattern, config.dt);
+  const unsigned threads = spbench::resolve_threads(options.threads);
+
+  std::printf("scene %s: %zu triangles, %zu sources; pattern %s; %u bounces; CPU backend on %u threads\n",
+              options.scene.c_str(), scene.triangle_count(), scene.sources.size(),
+              spbench::pattern_name(options.pattern), options.bounces, threads);
+  std::printf("host: %s\n", spbench::host_description().c_str());
+  config.ray_budget = 1;
+  auto probe_world = sp::make_world(scene, config);
+  if (!probe_world) {
+    std::fprintf(stderr, "bench_step: %s\n", probe_world.error().message.c_str());
+    return 1;
   }
-  auto close = [](std::uint64_t a, std::uint64_t b) {
-    return double(a > b ? a - b : b - a) <= 0.001 * double(std::max(a, b)) + 1.0;
-  };
-  if (close(indicators[0], indicators[1]) && close(casts[0], casts[1])) return true;
-  std::fprintf(stderr, "bench_step: backends disagree at budget %u: indicators %llu vs %llu, casts %llu vs %llu\n",
-               budget, (unsigned long long)indicators[0], (unsigned long long)indicators[1],
-               (unsigned long long)casts[0], (unsigned long long)casts[1]);
-  return false;
+  const auto backends = spbench::usable_backends(*probe_world, options.backends, threads);
+  if (backends.empty()) {
+    std::fprintf(stderr, "bench_step: no backend can run here\n");
+    return 1;
+  }
+
+  spbench::Json results = spbench::Json::array();
+  std::printf("%-4s %7s %6s %9s %9s %9s %9s %8s %9s %11s %9s %9s %6s\n", "back", "budget", "steps", "ms med",
+              "ms p99", "gpu med", "gpu p99", "base ms", "overhead", "casts/step", "Mcasts/s", "ind/step", "paper");
+  for (std::uint32_t budget : options.budgets) {
+    config.ray_budget = budget;
+    const sp::World world = sp::make_world(scene, config).value();
+    const std::string disagreement =
+        spbench::backends_disagree(world, spbench::names(backends), threads, options.validate_steps);
+    if (!disagreement.empty()) {
+      std::fprintf(stderr, "bench_step: backends disagree at budget %u: %s\n", budget, disagreement.c_str());
+      return 1;
+    }
+    for (const spbench::BackendInfo& backend : backends) {
+      std::vector<spbench::LoopRun> runs;
+      for (std::uint32_t run = 0; run < options.runs; ++run) {
+        auto sim = spbench::make_simulator(world, backend.name, threads).value();
+        runs.push_back(spbench::run_frame_loop(*sim, options.loop));
+      }
+      const spbench::LoopSummary s = spbench::summarize(runs);
+      const auto paper = kPaperOverheadMs.find(budget);
+      std::printf("%-4s %7u %6zu %9.4f %9.4f %9s %9s %8.5f %9.4f %11.0f %9.3f %9.1f %6s\n", backend.name.c_str(),
+                  budget, s.steps, s.ms_median, s.ms_p99, s.gpu_ms_median ? format("%.4f", *s.gpu_ms_median).c_str() : "-",
+                  s.gpu_ms_p99 ? format("%.4f", *s.gpu_ms_p99).c_str() : "-", s.baseline_ms_median, s.overhead_ms,
+                  s.casts_per_step, s.casts_per_second * 1e-6, s.indicators_per_step,
+                  paper != kPaperOverheadMs.end() ? format("%.2f", paper->second).c_str() : "-");
+      std::fflush(stdout);
+      spbench::Json row = {{"backend", backend.name}, {"device", backend.device}, {"budget", budget}};
+      row.update(spbench::to_json(s));
+      row["paper_unity_overhead_ms"] =
+          paper != kPaperOverheadMs.end() ? spbench::Json(paper->second) : spbench::Json(nullptr);
+      results.push_back(row);
+    }
+  }
+
+  if (!options.json.empty()) {
+    spbench::Json paper_points = spbench::Json::object();
+    for (const auto& [budget, ms] : kPaperOverheadMs) paper_points[std::to_string(budget)] = ms;
+    spbench::Json document = {
+        {"benchmark", "bench_step"},
+        {"scene", {{"spec", options.scene}, {"triangles", scene.triangle_count()}, {"sources", scene.sources.size()}}},
+        {"host", spbench::host_description()},
+        {"settings",
+         {{"pattern", spbench::pattern_name(options.pattern)},
+          {"bounces", options.bounces},
+          {"cpu_threads", threads},
+          {"steps", options.loop.steps},
+          {"warmup", options.loop.warmup},
+          {"runs", options.runs},
+          {"max_seconds", options.loop.max_seconds},
+          {"validate_steps", options.validate_steps}}},
+        {"baseline", "the frame loop without soundpaint: player position update and clock reads only"},
+        {"paper_unity_overhead_ms", paper_points},
+        {"results", results}};
+    spbench::write_json(cli, options.json, document);
+  }
+  return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Options options = parse(argc, argv);
-  auto scene = sp::load_scene(options.scene);
-  if (!scene) {
-    std::fprintf(stderr, "bench_step: %s\n", scene.error().message.c_str());
-    return 1;
-  }
-  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  std::printf("scene %s: %zu triangles, %zu sources; %u bounces; CPU backend on %u threads\n", options.scene.c_str(),
-              scene->triangle_count(), scene->sources.size(), options.bounces, threads);
-  for (const std::string& backend : options.backends)
-    std::printf("%s backend: %s\n", backend.c_str(), make(*scene, options, backend, 1)->device_description().c_str());
-  std::printf("%-4s %8s %12s %12s %12s %12s %14s\n", "back", "budget", "ms/step med", "ms/step p99", "gpu ms med",
-              "casts/step", "Mcasts/s");
-  for (std::uint32_t budget : options.budgets) {
-    if (!validate(*scene, options, budget)) return 1;
-    for (const std::string& backend : options.backends) {
-      std::vector<double> medians, p99s, gpu_medians, rates, casts_per_step;
-      for (std::uint32_t run = 0; run < options.runs; ++run) {
-        auto sim = make(*scene, options, backend, budget);
-        for (std::uint32_t n = 0; n < options.warmup; ++n) sim->step().value();
-        std::vector<double> wall, gpu;
-        std::uint64_t casts = 0;
-        for (std::uint32_t n = 0; n < options.steps; ++n) {
-          auto start = std::chrono::steady_clock::now();
-          sim->step().value();
-          wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-          if (auto g = sim->last_gpu_ms()) gpu.push_back(*g);
-          casts += sim->last_step_casts();
-        }
-        double total_ms = 0.0;
-        for (double ms : wall) total_ms += ms;
-        medians.push_back(sp::median(wall));
-        p99s.push_back(sp::percentile(wall, 99.0));
-        if (!gpu.empty()) gpu_medians.push_back(sp::median(gpu));
-        casts_per_step.push_back(double(casts) / options.steps);
-        rates.push_back(total_ms > 0.0 ? double(casts) / total_ms * 1e-3 : 0.0);
-      }
-      char gpu_text[32] = "-";
-      if (!gpu_medians.empty()) std::snprintf(gpu_text, sizeof gpu_text, "%.4f", sp::median(gpu_medians));
-      std::printf("%-4s %8u %12.4f %12.4f %12s %12.0f %14.2f\n", backend.c_str(), budget, sp::median(medians),
-                  sp::median(p99s), gpu_text, sp::median(casts_per_step), sp::median(rates));
-      std::fflush(stdout);
-    }
-  }
-  return 0;
-}
+int main(int argc, char** argv) { return spbench::bench_main(argc, argv, "bench_step", kUsage, parse, run); }

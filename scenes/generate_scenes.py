@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Writes soundpaint's demo scenes next to this script (or into --out DIR):
 closed_room.gltf (and the same room as closed_room.glb), two_rooms.gltf, and
-level.gltf + level.bin.
+level.gltf + level.bin. With --big-level DIR it writes only level_big.gltf +
+level_big.bin into DIR: the same level (rooms, sources, listener) with finely
+tessellated columns, about 250k triangles, for the benchmarks; it is never
+committed (scripts/run-benchmarks.sh writes it into its build directory).
 
 Conventions (what the simulation and its tests rely on):
   * glTF 2.0, metres, +Y up, right-handed. Floors have their top at y = 0.
@@ -373,7 +376,9 @@ def _wall(solids, material, thickness, openings, start, end, box_at):
     solids.box(material, *box_at(cursor, end, -SLAB, HEIGHT, half))
 
 
-def level(out_dir):
+def level(out_dir, name="level", column_segments=32, column_rings=8, triangle_range=(5000, 50000)):
+    """The 4 x 3 room level. The column tessellation sets the triangle count
+    without changing the layout; the defaults write the bundled level."""
     walls, floors = Solids(), Solids()
     half_out = OUTER[1] / 2
     width, depth = COLS * CELL_X, ROWS * CELL_Z
@@ -430,8 +435,8 @@ def level(out_dir):
     # Columns: one mesh each, instanced by node translation (local origin at
     # the column's foot).
     steel, concrete_col = Solids(), Solids()
-    steel.cylinder("metal", 0, 0, 0.18, 0, HEIGHT, 32, 8)
-    concrete_col.cylinder("concrete", 0, 0, 0.3, 0, HEIGHT, 32, 8)
+    steel.cylinder("metal", 0, 0, 0.18, 0, HEIGHT, column_segments, column_rings)
+    concrete_col.cylinder("concrete", 0, 0, 0.3, 0, HEIGHT, column_segments, column_rings)
     steel.check()
     concrete_col.check()
     steel_mesh, concrete_mesh = gltf.mesh("SteelColumn", steel), gltf.mesh("ConcreteColumn", concrete_col)
@@ -496,15 +501,22 @@ def level(out_dir):
     walls.check()
     floors.check()
     check_disjoint(walls, floors, placed)
-    assert 5000 <= gltf.triangles <= 50000, gltf.triangles
-    gltf.write(os.path.join(out_dir, "level.gltf"), "external")
+    assert triangle_range[0] <= gltf.triangles <= triangle_range[1], gltf.triangles
+    gltf.write(os.path.join(out_dir, name + ".gltf"), "external")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.dirname(os.path.abspath(__file__)),
                         help="directory to write into (default: this script's directory)")
+    parser.add_argument("--big-level", metavar="DIR",
+                        help="write only level_big.gltf (about 250k triangles, for benchmarks) into DIR")
     args = parser.parse_args()
+    if args.big_level:
+        os.makedirs(args.big_level, exist_ok=True)
+        # 13 columns of 2 * 128 * 74 + 2 * 128 triangles each, plus the rest of the level.
+        level(args.big_level, "level_big", column_segments=128, column_rings=74, triangle_range=(200000, 300000))
+        return
     os.makedirs(args.out, exist_ok=True)
     closed_room(args.out)
     two_rooms(args.out)
