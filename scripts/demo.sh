@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Setup + demo: installs dependencies, builds, and simulates the bundled level,
-# writing demo-output/indicators.csv and demo-output/stats.json.
+# Setup + demo: installs dependencies, builds, simulates the bundled level and
+# draws it: demo-output/level.png, demo-output/indicators.csv, demo-output/stats.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -9,4 +9,5 @@ mkdir -p demo-output
 ./build/soundpaint info scenes/level.gltf
 ./build/soundpaint simulate scenes/level.gltf --steps 240 \
   --indicators demo-output/indicators.csv --stats demo-output/stats.json
-echo "wrote demo-output/indicators.csv and demo-output/stats.json"
+./build/soundpaint render scenes/level.gltf --steps 30 --out demo-output/level.png
+echo "wrote demo-output/level.png, demo-output/indicators.csv and demo-output/stats.json"
