@@ -12,12 +12,13 @@
 #  1. bench_step on scenes/level.gltf (9.6k triangles, 15 sources), the
 #     paper's workload: budgets 0, 1 (the fixed cost per step), 100, 500,
 #     2500 (the paper's) and 10k, 100k (scaling); 2000 steps per run or 10 s,
-#     whichever comes first, 3 runs, both backends.
+#     whichever comes first, 5 runs (3 on the big level), both backends.
 #  2. The same on level_big.gltf (the same level with ~250k triangles),
 #     generated into the build directory by scenes/generate_scenes.py.
 #  3. bench_rays: soundpaint's closest_hit against Embree on the same emitted
 #     rays, BVH build times, and the backends stepping, on both levels and on
 #     generated levels of 10k, 100k and 1M triangles.
+#  4. bench_draw: the indicator pass for 20k and 200k indicators at 1280x720.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${BUILD_DIR:-build-bench}
@@ -26,7 +27,7 @@ start_all=$SECONDS
 
 echo "== building into $BUILD (Release)"
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target bench_step bench_rays
+cmake --build "$BUILD" -j"$(nproc)" --target bench_step bench_rays bench_draw
 python3 scenes/generate_scenes.py --big-level "$BUILD/scenes"
 mkdir -p "$RAW"
 BIG="$BUILD/scenes/level_big.gltf"
@@ -41,13 +42,18 @@ run() {
   echo "== $name: $((SECONDS - start)) s"
 }
 
-STEP_ARGS=(--backends cpu,gpu --budgets 0,1,100,500,2500,10000,100000 --steps 2000 --warmup 60 --runs 3
+STEP_ARGS=(--backends cpu,gpu --budgets 0,1,100,500,2500,10000,100000 --steps 2000 --warmup 60
            --max-seconds 10 --pattern paper)
-run step_level "$BUILD/bench/bench_step" --scene scenes/level.gltf "${STEP_ARGS[@]}" --json "$RAW/step_level.json"
-run step_level_big "$BUILD/bench/bench_step" --scene "$BIG" "${STEP_ARGS[@]}" --json "$RAW/step_level_big.json"
+# The bundled level is the headline figure: medians of 5 runs; the big level 3.
+run step_level "$BUILD/bench/bench_step" --scene scenes/level.gltf "${STEP_ARGS[@]}" --runs 5 \
+  --json "$RAW/step_level.json"
+run step_level_big "$BUILD/bench/bench_step" --scene "$BIG" "${STEP_ARGS[@]}" --runs 3 --json "$RAW/step_level_big.json"
 run rays "$BUILD/bench/bench_rays" --scenes "scenes/level.gltf,$BIG,gen:10000,gen:100000,gen:1000000" \
   --rays 500000 --budget 2500 --runs 5 --build-runs 3 --backends cpu,gpu --sim-steps 120 --sim-max-seconds 10 \
   --json "$RAW/rays.json"
+
+# The indicator pass alone (issue 4): 20k and 200k indicators at 1280x720.
+run draw "$BUILD/bench/bench_draw" --counts 20000,200000 --width 1280 --height 720 --runs 9 --warmup 3
 
 if command -v gnuplot >/dev/null; then
   echo "== plots"
