@@ -1,9 +1,10 @@
 // Bounding volume hierarchy over a triangle soup: binned SAH build, flattened
 // into the std430 layout of shaders/shared/sp_types.h that the GPU traverses
-// unchanged.
+// unchanged, plus a CPU-only 4-wide copy that closest_hit traverses.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -24,11 +25,20 @@ struct BvhBuildSettings {
   std::uint32_t max_depth = SP_BVH_MAX_DEPTH;  // levels including the root; <= SP_BVH_MAX_DEPTH
 };
 
+// The CPU's 4-wide tree (src/bvh/wide_bvh.h); opaque outside the bvh module.
+struct WideBvh;
+
 struct Bvh {
   std::vector<BvhNode> nodes;          // nodes[0] is the root; siblings adjacent
   std::vector<BvhTriangle> triangles;  // in leaf order; scene_index maps back
   std::uint32_t depth = 0;             // levels, root included
-  double build_ms = 0.0;               // wall time of build_bvh
+  double build_ms = 0.0;               // wall time of build_bvh, the wide tree included
+  // `nodes` collapsed into 4-wide SIMD nodes, with the triangles copied into
+  // 4-triangle packets, for closest_hit on the CPU; built by build_bvh.
+  // Immutable, so copies of a Bvh share it. Null (a tree made by hand) makes
+  // closest_hit walk `nodes` as the GPU does; code that edits nodes or
+  // triangles must reset it.
+  std::shared_ptr<const WideBvh> wide;
 
   std::size_t triangle_count() const { return triangles.size(); }
 };
@@ -40,7 +50,9 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
               const BvhBuildSettings& settings = {});
 
 // Closest hit with distance in (tmin, tmax] along unit direction `dir`.
-// Triangles are two-sided; ties go to the lowest scene index.
+// Triangles are two-sided; ties go to the lowest scene index. Traverses
+// `wide` when there is one, else `nodes`; either way the answer is the
+// shared sp_closest_hit's (shaders/shared/sp_traverse.h), t bit for bit.
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
 // The same query by testing every triangle; for tests and validation.

@@ -1,6 +1,8 @@
-// Closest-hit queries on the CPU. The BVH path runs the traversal shared with
-// the GPU (shaders/shared/sp_traverse.h) so both backends agree bit for bit;
-// the brute-force path is the reference the tests compare it against.
+// Closest-hit queries on the CPU. The BVH path runs the 4-wide traversal of
+// wide_bvh.cpp, or without a wide tree the one shared with the GPU
+// (shaders/shared/sp_traverse.h); the brute-force path is the reference the
+// tests compare them against.
+#include "bvh/wide_bvh.h"
 #include "soundpaint/bvh.h"
 #include "sp_traverse.h"
 
@@ -9,6 +11,7 @@ namespace sp {
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   // The shared traversal reads nodes[0] unconditionally.
   if (bvh.nodes.empty()) return HitInfo{tmax, SP_INVALID};
+  if (bvh.wide) return wide_closest_hit(*bvh.wide, bvh, origin, dir, tmin, tmax);
   return shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
 }
 

@@ -1,22 +1,21 @@
 #include "sim/cpu_tracer.h"
 
+#include "soundpaint/bvh.h"
 #include "sp_ray_model.h"
-#include "sp_traverse.h"
 
 namespace sp {
 
 void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<Indicator>& indicators,
                TraceCounters& counters) {
   using namespace shader;
-  const BvhNode* nodes = context.bvh->nodes.data();
   const BvhTriangle* triangles = context.bvh->triangles.data();
   const StepSource& source = context.sources[ray.source];
   const SimParams& p = context.params;
   BvhTriangle no_triangle{};
 
   while (ray.state != SP_RAY_DEAD) {
-    HitInfo hit = sp_closest_hit(nodes, triangles, sp_cast_origin(ray), ray.dir, sp_cast_tmin(ray),
-                                 sp_cast_tmax(ray, p));
+    // The 4-wide CPU traversal; same hits as the GPU's sp_closest_hit.
+    HitInfo hit = closest_hit(*context.bvh, sp_cast_origin(ray), ray.dir, sp_cast_tmin(ray), sp_cast_tmax(ray, p));
     counters.casts += 1;
     const BvhTriangle& triangle = hit.triangle != SP_INVALID ? triangles[hit.triangle] : no_triangle;
     Indicator indicator;

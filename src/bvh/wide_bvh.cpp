@@ -1,0 +1,363 @@
+// Collapse of the binary BVH into 4-wide nodes and their single-ray SIMD
+// traversal; see wide_bvh.h for the references and the node layout.
+//
+// Written with GCC/Clang vector extensions (one SSE2 register per Vec4 on
+// x86-64, NEON elsewhere), as bvh_geometry.h is; only the lane mask uses an
+// x86 intrinsic when there is one.
+#include "bvh/wide_bvh.h"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <limits>
+
+#include "sp_traverse.h"
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+namespace sp {
+namespace {
+
+// sp_intersect_box's far-distance scaling (1 + 2 * gamma(3), Ize 2013).
+constexpr float kBoxMargin = 1.0000004f;
+// A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
+// nodes than the binary depth, so the stack cannot overflow.
+constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
+
+inline Vec4 splat(float x) { return Vec4{x, x, x, x}; }
+
+// Bit i set where lane i of the comparison result is true.
+inline unsigned lane_mask(Int4 m) {
+#if defined(__SSE__)
+  return static_cast<unsigned>(_mm_movemask_ps(std::bit_cast<__m128>(m)));
+#else
+  return static_cast<unsigned>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
+#endif
+}
+
+// ---------------------------------------------------------------- collapse
+
+class Collapser {
+ public:
+  Collapser(const Bvh& bvh, WideBvh& wide) : bvh_(bvh), wide_(wide) {}
+
+  void build() {
+    if (bvh_.nodes[0].count > 0u) {  // a single leaf: a wide root with one slot
+      WideNode root = empty_node();
+      fill_slot(root, 0u, 0u);
+      wide_.nodes.push_back(root);
+      wide_.depth = 1u;
+    } else {
+      collapse(0u, 1u);
+    }
+  }
+
+ private:
+  static WideNode empty_node() {
+    WideNode node{};
+    for (Vec4& b : node.bounds) b = splat(std::numeric_limits<float>::quiet_NaN());
+    return node;
+  }
+
+  // Slot `slot` of `node` becomes binary node `binary`; a leaf gets its
+  // packets now, an interior node its wide index later.
+  void fill_slot(WideNode& node, std::uint32_t slot, std::uint32_t binary) {
+    const BvhNode& n = bvh_.nodes[binary];
+    for (int a = 0; a < 3; ++a) {
+      node.bounds[a][slot] = n.bmin[a];
+      node.bounds[3 + a][slot] = n.bmax[a];
+    }
+    if (n.count > 0u)
+      node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), (n.count + kWideArity - 1u) / kWideArity};
+  }
+
+  // The wide node of binary interior node `binary` at wide level `level`,
+  // and its subtree; returns its index. Slots 2g and 2g + 1 hold the
+  // children of child g of `binary` (g = 0: left), or child g itself in slot
+  // 2g when it is a leaf.
+  std::uint32_t collapse(std::uint32_t binary, std::uint32_t level) {
+    wide_.depth = std::max(wide_.depth, level);
+    std::uint32_t slots[kWideArity] = {SP_INVALID, SP_INVALID, SP_INVALID, SP_INVALID};
+    for (std::uint32_t g = 0; g < 2u; ++g) {
+      const std::uint32_t child = bvh_.nodes[binary].left_or_first + g;
+      const BvhNode& n = bvh_.nodes[child];
+      slots[2u * g] = n.count > 0u ? child : n.left_or_first;
+      if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
+    }
+    WideNode node = empty_node();
+    for (std::uint32_t s = 0; s < kWideArity; ++s)
+      if (slots[s] != SP_INVALID) fill_slot(node, s, slots[s]);
+    const auto index = static_cast<std::uint32_t>(wide_.nodes.size());
+    wide_.nodes.push_back(node);
+    // Children after the parent is stored: collapse() appends nodes.
+    for (std::uint32_t s = 0; s < kWideArity; ++s) {
+      if (slots[s] != SP_INVALID && bvh_.nodes[slots[s]].count == 0u) {
+        const std::uint32_t child = collapse(slots[s], level + 1u);
+        wide_.nodes[index].slot[s].child = child;
+      }
+    }
+    return index;
+  }
+
+  // Packs leaf triangles [first, first + count); returns the first packet.
+  std::uint32_t add_packets(std::uint32_t first, std::uint32_t count) {
+    const auto start = static_cast<std::uint32_t>(wide_.packets.size());
+    for (std::uint32_t base = 0; base < count; base += kWideArity) {
+      TrianglePacket p{};  // padding lanes: vertices at the origin
+      for (std::uint32_t lane = 0; lane < kWideArity; ++lane) {
+        if (base + lane >= count) {
+          p.triangle[lane] = SP_INVALID;
+          continue;
+        }
+        const std::uint32_t i = first + base + lane;
+        const BvhTriangle& t = bvh_.triangles[i];
+        const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k)
+          for (int a = 0; a < 3; ++a) p.v[k][a][lane] = v[k][a];
+        p.triangle[lane] = i;
+      }
+      wide_.packets.push_back(p);
+    }
+    return start;
+  }
+
+  const Bvh& bvh_;
+  WideBvh& wide_;
+};
+
+// --------------------------------------------------------------- traversal
+
+// Per-ray constants, splatted across lanes.
+struct WideRay {
+  Vec4 origin[3];
+  Vec4 inv_dir[3];
+  Vec4 tmin;
+  // Byte offsets in a WideNode of each axis's entry and exit planes' bounds.
+  std::size_t entry_plane[3];
+  std::size_t exit_plane[3];
+  // Woop, in the permuted axes kx, ky, kz of sp_make_query.
+  int k[3];
+  Vec4 origin_k[3];
+  Vec4 shear[3];
+};
+
+WideRay make_wide_ray(const shader::RayQuery& q) {
+  WideRay r;
+  for (int a = 0; a < 3; ++a) {
+    r.origin[a] = splat(q.origin[a]);
+    r.inv_dir[a] = splat(q.inv_dir[a]);
+    // With lo <= hi, (lo - o) * inv <= (hi - o) * inv exactly when inv > 0
+    // (rounding is monotonic): choosing the plane by sign gives the min and
+    // max of sp_intersect_box's t0, t1 without computing both.
+    const auto lo = static_cast<std::size_t>(a) * sizeof(Vec4), hi = lo + 3u * sizeof(Vec4);
+    const bool negative = q.inv_dir[a] < 0.0f;
+    r.entry_plane[a] = negative ? hi : lo;
+    r.exit_plane[a] = negative ? lo : hi;
+  }
+  r.tmin = splat(q.tmin);
+  r.k[0] = q.kx;
+  r.k[1] = q.ky;
+  r.k[2] = q.kz;
+  for (int i = 0; i < 3; ++i) {
+    r.origin_k[i] = splat(q.origin[r.k[i]]);
+    r.shear[i] = splat(q.shear[i]);
+  }
+  return r;
+}
+
+inline Vec4 plane(const WideNode& node, std::size_t offset) {
+  return *reinterpret_cast<const Vec4*>(reinterpret_cast<const char*>(node.bounds) + offset);
+}
+
+// Distances of the four slots' entry planes on axis `a`.
+inline Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) {
+  return (plane(node, r.entry_plane[a]) - r.origin[a]) * r.inv_dir[a];
+}
+
+// sp_intersect_box on the four slots with limit `tmax`: returns the lanes
+// hit, with their entry distances in `tnear`. kParallel: the ray has
+// direction components of magnitude <= 1e-20, the bits of `parallel`
+// (RayQuery::parallel_axes).
+//
+// The box-derived value is always the second operand of vmin/vmax, which
+// return it when the comparison is unordered, so the NaN bounds of an
+// unused slot reach tnear and tfar (see WideNode).
+template <bool kParallel>
+inline unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const WideNode& node, float tmax,
+                                Vec4& tnear) {
+  Vec4 entry[3], exit[3];
+  for (int a = 0; a < 3; ++a) {
+    entry[a] = slab_entry(r, node, a);
+    exit[a] = (plane(node, r.exit_plane[a]) - r.origin[a]) * r.inv_dir[a];
+    if (kParallel && (parallel & (1u << a))) {  // a ray inside the slab never leaves it
+      const Int4 inside = (node.bounds[a] <= r.origin[a]) & (r.origin[a] <= node.bounds[3 + a]);
+      exit[a] = inside ? splat(SP_FAR) : exit[a];
+    }
+  }
+  // Two levels of min/max rather than a chain of three: a shorter latency
+  // on the path to the next node's address.
+  tnear = vmax(vmax(entry[0], entry[1]), vmax(r.tmin, entry[2]));
+  const Vec4 tfar = vmin(vmin(exit[0], exit[1]), vmin(splat(tmax), exit[2]));
+  return lane_mask(tnear <= tfar * splat(kBoxMargin));
+}
+
+// Which of slots 0-1 and 2-3 the binary traversal enters first when both
+// hold hits: the children of the nearer of their two parents, the left on a
+// tie. A parent's box is the union of its children's (build_bvh's bounds are
+// exact) and rounding is monotonic, so its entry plane's distance is the
+// smaller of its children's on each axis: sp_intersect_box's tnear for it,
+// from the slots' entries. An unused slot 1 or 3 is the first operand of
+// vmin and loses to the NaN-free slot 0 or 2.
+inline std::uint32_t first_pair(const WideRay& r, const WideNode& node) {
+  Vec4 parent = r.tmin;
+  for (int a = 0; a < 3; ++a) {
+    const Vec4 e = slab_entry(r, node, a);
+    parent = vmax(parent, vmin(__builtin_shufflevector(e, e, 1, 0, 3, 2), e));
+  }
+  return parent[0] <= parent[2] ? 0u : 2u;
+}
+
+// The best hit so far, with sp_closest_hit's acceptance rule.
+struct Best {
+  HitInfo hit;
+  const BvhTriangle* triangles;
+
+  std::uint32_t scene(std::uint32_t triangle) const {
+    return triangle == SP_INVALID ? SP_INVALID : triangles[triangle].scene_index;
+  }
+  // (t, triangle) with t <= hit.t already checked; the scene index is read
+  // only for an exact tie, where sp_better_hit needs it.
+  void offer(float t, std::uint32_t triangle) {
+    if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle};
+  }
+};
+
+// sp_intersect_triangle on `count` packets, then the acceptance window
+// (tmin, tmax] and sp_better_hit. Every line mirrors the shared function
+// operation for operation, so each lane's t is bit-identical to it.
+inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count, Best& best) {
+  const Vec4 zero = splat(0.0f);
+  for (const TrianglePacket* p = packets; p != packets + count; ++p) {
+    // a = v0 - origin, b = v1 - origin, c = v2 - origin, in the axes kx, ky, kz.
+    Vec4 d[3][3];
+    for (int vertex = 0; vertex < 3; ++vertex)
+      for (int i = 0; i < 3; ++i) d[vertex][i] = p->v[vertex][r.k[i]] - r.origin_k[i];
+    const Vec4 ax = d[0][0] - r.shear[0] * d[0][2];
+    const Vec4 ay = d[0][1] - r.shear[1] * d[0][2];
+    const Vec4 bx = d[1][0] - r.shear[0] * d[1][2];
+    const Vec4 by = d[1][1] - r.shear[1] * d[1][2];
+    const Vec4 cx = d[2][0] - r.shear[0] * d[2][2];
+    const Vec4 cy = d[2][1] - r.shear[1] * d[2][2];
+    const Vec4 u = cx * by - cy * bx;
+    const Vec4 v = ax * cy - ay * cx;
+    const Vec4 w = bx * ay - by * ax;
+    const Int4 outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+    const Vec4 det = u + v + w;
+    const Vec4 az = r.shear[2] * d[0][2];
+    const Vec4 bz = r.shear[2] * d[1][2];
+    const Vec4 cz = r.shear[2] * d[2][2];
+    const Vec4 t_scaled = u * az + v * bz + w * cz;
+    const Vec4 t = t_scaled / det;  // lanes with det == 0 are masked below
+    // t <= best.hit.t <= tmax stands for t <= tmax; the tie needs offer().
+    const Int4 candidate = ~outside & (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.hit.t));
+    for (unsigned m = lane_mask(candidate); m != 0u; m &= m - 1u) {
+      const auto lane = static_cast<unsigned>(std::countr_zero(m));
+      if (t[lane] <= best.hit.t) best.offer(t[lane], p->triangle[lane]);
+    }
+  }
+}
+
+// The traversal proper. Entering slots in the order of the binary walk (see
+// the file comment of wide_bvh.h) is what makes the answer identical to it.
+template <bool kParallel>
+HitInfo traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Best best) {
+  // A slot that waits, with the entry distance of its box.
+  struct Entry {
+    float t;
+    WideSlot slot;
+  };
+  Entry stack[kStackSize];
+  std::uint32_t size = 0;
+  WideSlot item{0u, 0u};  // the root
+  const WideNode* nodes = wide.nodes.data();
+  const TrianglePacket* packets = wide.packets.data();
+
+  for (;;) {
+    if (item.count == 0u) {
+      const WideNode& node = nodes[item.child];
+      Vec4 tnear;
+      const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.hit.t, tnear);
+      if (hits != 0u) {
+        if ((hits & (hits - 1u)) == 0u) {  // one hit, the common case
+          item = node.slot[std::countr_zero(hits)];
+          continue;
+        }
+        // Push in reverse order of the binary walk, so that it pops in order:
+        // the pair entered second, then the farther slot of the first.
+        auto push = [&](std::uint32_t s) {
+          assert(size < kStackSize);
+          stack[size++] = Entry{tnear[s], node.slot[s]};
+        };
+        // The nearer slot of pair p (slots p, p + 1) when both are hit; ties go left.
+        auto nearer = [&](std::uint32_t p) { return tnear[p] <= tnear[p + 1u] ? p : p + 1u; };
+        const std::uint32_t first = (hits & 3u) == 0u ? 2u : (hits & 12u) == 0u ? 0u : first_pair(ray, node);
+        const std::uint32_t second = first ^ 2u;
+        const unsigned in_second = (hits >> second) & 3u;
+        if (in_second == 3u) {
+          const std::uint32_t s = nearer(second);
+          push(s ^ 1u);
+          push(s);
+        } else if (in_second != 0u) {
+          push(second + (in_second >> 1u));
+        }
+        const unsigned in_first = (hits >> first) & 3u;
+        if (in_first == 3u) {
+          const std::uint32_t s = nearer(first);
+          push(s ^ 1u);
+          item = node.slot[s];
+        } else {
+          item = node.slot[first + (in_first >> 1u)];
+        }
+        continue;
+      }
+    } else {
+      intersect_packets(ray, packets + item.child, item.count, best);
+    }
+    // Pop, skipping slots that a closer hit has since ruled out: re-testing
+    // the box with the new limit would give the same entry distance, and
+    // min(exit, limit) * margin is below it exactly when limit * margin is.
+    const float limit = best.hit.t * kBoxMargin;
+    for (;;) {
+      if (size == 0u) return best.hit;
+      --size;
+      if (stack[size].t <= limit) break;
+    }
+    item = stack[size].slot;
+  }
+}
+
+}  // namespace
+
+WideBvh build_wide_bvh(const Bvh& bvh) {
+  assert(!bvh.nodes.empty());
+  WideBvh wide;
+  // Between one wide node per binary interior node and one per three
+  // (n nodes have (n - 1) / 2 interior ones); one packet per leaf of up to
+  // four triangles.
+  wide.nodes.reserve(bvh.nodes.size() / 4u + 1u);
+  wide.packets.reserve(bvh.nodes.size() / 2u + 1u);
+  Collapser(bvh, wide).build();
+  return wide;
+}
+
+HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
+  const WideRay ray = make_wide_ray(q);
+  const Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
+  if (q.parallel_axes != 0u) return traverse<true>(wide, ray, q.parallel_axes, best);
+  return traverse<false>(wide, ray, 0u, best);
+}
+
+}  // namespace sp

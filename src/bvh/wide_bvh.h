@@ -1,0 +1,100 @@
+// CPU-only 4-wide BVH, collapsed from the binary sp::Bvh that the GPU
+// traverses, so the CPU backend tests four boxes (or four triangles) with one
+// SIMD instruction per slab: ~10 wide nodes per cast on scenes/level.gltf
+// instead of ~38 binary ones.
+//
+// References: Wald, Benthin, Boulos, "Getting Rid of Packets: Efficient SIMD
+// Single-Ray Traversal using Multi-branching BVHs", IEEE Symposium on
+// Interactive Ray Tracing 2008 (4-wide nodes by collapsing a binary tree,
+// nearest-first order, a stack of entry distances); Embree's BVH4 works
+// alike (Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray
+// Tracing", ACM TOG 33(4), 2014).
+//
+// Same answer as sp_closest_hit (shaders/shared/sp_traverse.h) on every ray,
+// triangle and t bit for bit, which the CPU backend needs to stay the GPU's
+// reference:
+//  - Box test: sp_intersect_box lane by lane (same operations, same
+//    1.0000004f margin, same axis-parallel rule). Taking each axis's entry
+//    and exit plane by the sign of inv_dir gives its min/max exactly.
+//  - Triangle test: sp_intersect_triangle's Woop arithmetic, operation by
+//    operation, on four lanes; IEEE rounding makes each lane bit-identical
+//    (the build uses -ffp-contract=off, so no lane fuses a multiply-add).
+//  - Visits: the binary walk enters a node when its box passes with the best
+//    hit so far, in a fixed order (depth first, nearer child first, left on a
+//    tie; entry distances do not depend on the limit). A box contains its
+//    descendants' and rounding is monotonic, so a leaf passing implies its
+//    ancestors passing: the walk enters leaf L exactly when L's box passes
+//    with the best hit of the leaves entered before L. The wide walk enters
+//    the same leaves in the same order, so where the box margin hides a hit
+//    from the binary walk (the near-ties of test_bvh.cpp) it hides it here
+//    too. Ordering slots by their own entry distance alone would not: it
+//    changes which hits are known when a box is tested. Hence the fixed
+//    two-level collapse below rather than Wald's widest-first one: it keeps
+//    the binary order computable from the slots.
+// tests/test_wide_bvh.cpp compares the two walks on many rays.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bvh/bvh_geometry.h"
+#include "soundpaint/bvh.h"
+
+namespace sp {
+
+// Children per wide node: one SSE register of floats.
+inline constexpr std::uint32_t kWideArity = 4;
+
+// What a slot of a wide node leads to:
+//
+//   count | child                        | box in WideNode::bounds
+//   ------+------------------------------+------------------------
+//   0     | index into WideBvh::nodes    | the binary node's box
+//   n > 0 | first of n TrianglePackets   | the binary leaf's box
+//   0     | 0 (unused slot)              | NaN: never hit (below)
+struct WideSlot {
+  std::uint32_t child;
+  std::uint32_t count;
+};
+
+// One node, 128 bytes (two cache lines): the binary node N it replaces has
+// children A (left) and B; slots 0 and 1 are A's children, or A itself in
+// slot 0 when A is a leaf; slots 2 and 3 the same for B. Slot i is lane i of
+// every Vec4.
+//
+// Unused slots (1 or 3, beside a leaf) hold NaN bounds. Every slab distance
+// is then NaN, the traversal's min/max keep the NaN (it is always their
+// second operand) and `tnear <= tfar` is false, so an unused slot misses
+// whatever the ray and its (tmin, tmax] are.
+struct alignas(64) WideNode {
+  Vec4 bounds[6];  // lo.x lo.y lo.z hi.x hi.y hi.z, one lane per slot
+  WideSlot slot[kWideArity];
+};
+static_assert(sizeof(WideNode) == 128);
+
+// Four triangles of one leaf as structure of arrays, 160 bytes. A leaf of n
+// triangles owns ceil(n / 4) consecutive packets. A padding lane has all
+// three vertices at (0, 0, 0) and triangle SP_INVALID: u = v = w = 0
+// exactly, so the Woop test's det is 0 and the lane never hits, just as a
+// degenerate triangle collapsed by make_bvh_triangle never does.
+struct alignas(32) TrianglePacket {
+  Vec4 v[3][3];                        // v[vertex][axis], copied from Bvh::triangles
+  std::uint32_t triangle[kWideArity];  // leaf-order index into Bvh::triangles
+};
+static_assert(sizeof(TrianglePacket) == 160);
+
+struct WideBvh {
+  std::vector<WideNode> nodes;  // nodes[0] is the root; children after their parent
+  std::vector<TrianglePacket> packets;
+  std::uint32_t depth = 0;  // wide levels, root included; <= the binary depth
+};
+
+// Collapses `bvh`. Precondition: bvh.nodes is not empty, and every interior
+// node's box is exactly the union of its children's, as build_bvh makes it
+// (the traversal derives a parent's entry distance from its children's).
+WideBvh build_wide_bvh(const Bvh& bvh);
+
+// sp_closest_hit's answer for `bvh`, from `wide` = build_wide_bvh(bvh).
+HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
+}  // namespace sp

@@ -1,0 +1,366 @@
+// Tests of the CPU-only 4-wide BVH (src/bvh/wide_bvh.h): the collapsed
+// tree's invariants, and its traversal against the binary one shared with the
+// GPU (shaders/shared/sp_traverse.h). The two must agree exactly, on every
+// ray: the same triangle and the same t, bit for bit. No mismatch class is
+// tolerated: the wide traversal enters the binary walk's leaves in the binary
+// walk's order with the same box test, so even the rare hit that the box
+// margin hides from the binary walk (the near-ties of test_bvh.cpp) is hidden
+// from both alike.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bvh/wide_bvh.h"
+#include "soundpaint/bvh.h"
+#include "sp_traverse.h"
+#include "support/bvh_scenes.h"
+
+namespace {
+
+using namespace sp::test;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// ------------------------------------------------------------- invariants
+
+// Walks the binary tree and the wide tree together. Checks the slot layout
+// that the traversal's ordering relies on (slots 2g, 2g + 1: the children of
+// child g, or child g alone in slot 2g), bounds copied exactly, each slot's
+// box inside its parent slot's box, unused slots, and the packets: every
+// triangle in exactly one lane, in leaf order, with its vertices.
+class WideChecker {
+ public:
+  explicit WideChecker(const sp::Bvh& bvh) : bvh_(bvh), wide_(*bvh.wide) {
+    node_refs_.assign(wide_.nodes.size(), 0);
+    packet_refs_.assign(wide_.packets.size(), 0);
+    triangle_refs_.assign(bvh.triangles.size(), 0);
+  }
+
+  void run() {
+    ASSERT_FALSE(wide_.nodes.empty());
+    node_refs_[0] = 1;
+    const sp::BvhNode& root = bvh_.nodes[0];
+    if (root.count > 0u) {  // a leaf root: one wide node, one slot
+      EXPECT_EQ(wide_.nodes.size(), 1u);
+      check_node(0u, {0u, SP_INVALID, SP_INVALID, SP_INVALID}, root, 1u);
+    } else {
+      check_interior(0u, 0u, 1u);
+    }
+    EXPECT_EQ(deepest_, wide_.depth);
+    EXPECT_LE(wide_.depth, bvh_.depth);
+    EXPECT_TRUE(std::all_of(node_refs_.begin(), node_refs_.end(), [](int r) { return r == 1; }))
+        << "a wide node is unreachable or shared";
+    EXPECT_TRUE(std::all_of(packet_refs_.begin(), packet_refs_.end(), [](int r) { return r == 1; }))
+        << "a packet is unreachable or shared";
+    EXPECT_TRUE(std::all_of(triangle_refs_.begin(), triangle_refs_.end(), [](int r) { return r == 1; }))
+        << "a triangle is not in exactly one packet lane";
+  }
+
+ private:
+  // Wide node `w` stands for binary interior node `binary`.
+  void check_interior(std::uint32_t w, std::uint32_t binary, std::uint32_t level) {
+    std::uint32_t slots[4] = {SP_INVALID, SP_INVALID, SP_INVALID, SP_INVALID};
+    for (std::uint32_t g = 0; g < 2u; ++g) {
+      const std::uint32_t child = bvh_.nodes[binary].left_or_first + g;
+      const sp::BvhNode& n = bvh_.nodes[child];
+      slots[2u * g] = n.count > 0u ? child : n.left_or_first;
+      if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
+    }
+    check_node(w, slots, bvh_.nodes[binary], level);
+  }
+
+  void check_node(std::uint32_t w, const std::uint32_t (&slots)[4], const sp::BvhNode& parent, std::uint32_t level) {
+    deepest_ = std::max(deepest_, level);
+    const sp::WideNode& node = wide_.nodes[w];
+    for (std::uint32_t s = 0; s < 4u; ++s) {
+      if (slots[s] == SP_INVALID) {
+        for (const sp::Vec4& b : node.bounds) EXPECT_TRUE(std::isnan(b[s])) << "unused slot " << s << " of " << w;
+        EXPECT_EQ(node.slot[s].child, 0u);
+        EXPECT_EQ(node.slot[s].count, 0u);
+        continue;
+      }
+      const sp::BvhNode& n = bvh_.nodes[slots[s]];
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(node.bounds[a][s], n.bmin[a]) << "slot " << s << " of wide node " << w;
+        EXPECT_EQ(node.bounds[3 + a][s], n.bmax[a]) << "slot " << s << " of wide node " << w;
+        EXPECT_LE(parent.bmin[a], node.bounds[a][s]) << "slot " << s << " outside its parent, wide node " << w;
+        EXPECT_LE(node.bounds[3 + a][s], parent.bmax[a]) << "slot " << s << " outside its parent, wide node " << w;
+      }
+      if (n.count > 0u) {
+        check_leaf(node.slot[s], n);
+      } else {
+        EXPECT_EQ(node.slot[s].count, 0u);
+        ASSERT_LT(node.slot[s].child, wide_.nodes.size());
+        EXPECT_GT(node.slot[s].child, w) << "children are stored after their parent";
+        ++node_refs_[node.slot[s].child];
+        check_interior(node.slot[s].child, slots[s], level + 1u);
+      }
+    }
+  }
+
+  void check_leaf(sp::WideSlot slot, const sp::BvhNode& leaf) {
+    EXPECT_EQ(slot.count, (leaf.count + 3u) / 4u);
+    ASSERT_LE(std::size_t{slot.child} + slot.count, wide_.packets.size());
+    for (std::uint32_t j = 0; j < slot.count; ++j) {
+      const sp::TrianglePacket& p = wide_.packets[slot.child + j];
+      ++packet_refs_[slot.child + j];
+      for (std::uint32_t lane = 0; lane < 4u; ++lane) {
+        const std::uint32_t i = leaf.left_or_first + 4u * j + lane;
+        if (4u * j + lane >= leaf.count) {  // padding: never hits (det == 0)
+          EXPECT_EQ(p.triangle[lane], SP_INVALID);
+          for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) EXPECT_EQ(p.v[k][a][lane], 0.0f);
+          continue;
+        }
+        ASSERT_EQ(p.triangle[lane], i) << "packets keep leaf order";
+        ++triangle_refs_[i];
+        const sp::BvhTriangle& t = bvh_.triangles[i];
+        const vec3 v[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k)
+          for (int a = 0; a < 3; ++a) EXPECT_EQ(p.v[k][a][lane], v[k][a]);
+      }
+    }
+  }
+
+  const sp::Bvh& bvh_;
+  const sp::WideBvh& wide_;
+  std::vector<int> node_refs_, packet_refs_, triangle_refs_;
+  std::uint32_t deepest_ = 0;
+};
+
+void check_wide_invariants(const sp::Bvh& bvh) {
+  ASSERT_TRUE(bvh.wide) << "build_bvh makes the wide tree";
+  WideChecker(bvh).run();
+}
+
+// -------------------------------------------------------------- traversal
+
+// Spreads the rays over the (tmin, tmax] windows the simulation and the
+// edge cases use: as given, tmax = SP_FAR (the traversal must still treat
+// t == SP_FAR as a miss), tmin = SP_EPSILON (reflected rays), a finite tmax,
+// and an unbounded window (tmin = -inf, tmax = +inf: hits behind the origin
+// count, and unused slots must miss whatever the limit).
+std::vector<Ray> vary_windows(std::vector<Ray> rays, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    Ray& r = rays[i];
+    switch (i % 8) {
+      case 1:
+        r.tmax = SP_FAR;
+        break;
+      case 2:
+        r.tmin = SP_EPSILON;
+        break;
+      case 3:
+        r.tmax = 0.25f + 8.0f * u(rng);
+        break;
+      case 4:
+        r.tmin = SP_EPSILON;
+        r.tmax = SP_FAR;
+        break;
+      case 5:
+        r.tmin = -kInf;
+        r.tmax = kInf;
+        break;
+      default:
+        break;
+    }
+  }
+  return rays;
+}
+
+struct Agreement {
+  std::size_t rays = 0;
+  std::size_t hits = 0;
+};
+
+// Every ray: wide == binary, triangle and t bit for bit; closest_hit (which
+// dispatches to the wide tree) says the same.
+Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
+  Agreement agreement;
+  std::size_t failures = 0;
+  for (const Ray& r : rays) {
+    const sp::HitInfo wide = sp::wide_closest_hit(*bvh.wide, bvh, r.origin, r.dir, r.tmin, r.tmax);
+    const sp::HitInfo binary =
+        sp::shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), r.origin, r.dir, r.tmin, r.tmax);
+    const sp::HitInfo dispatched = sp::closest_hit(bvh, r.origin, r.dir, r.tmin, r.tmax);
+    ++agreement.rays;
+    agreement.hits += binary.triangle != SP_INVALID;
+    const bool same = wide.triangle == binary.triangle &&
+                      std::bit_cast<std::uint32_t>(wide.t) == std::bit_cast<std::uint32_t>(binary.t);
+    const bool same_dispatched = dispatched.triangle == wide.triangle &&
+                                 std::bit_cast<std::uint32_t>(dispatched.t) == std::bit_cast<std::uint32_t>(wide.t);
+    if ((!same || !same_dispatched) && ++failures <= 5) {
+      ADD_FAILURE() << std::hexfloat << "ray o=(" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") d=("
+                    << r.dir.x << ", " << r.dir.y << ", " << r.dir.z << ") t in (" << r.tmin << ", " << r.tmax
+                    << "]: wide " << wide.triangle << " t=" << wide.t << ", binary " << binary.triangle
+                    << " t=" << binary.t << ", closest_hit " << dispatched.triangle << " t=" << dispatched.t;
+    }
+  }
+  EXPECT_EQ(failures, 0u) << "of " << rays.size() << " rays";
+  return agreement;
+}
+
+std::vector<Ray> concat(std::vector<Ray> a, const std::vector<Ray>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The scenes below cast 144k rays in all, each with both walks.
+
+TEST(WideBvh, RandomSoupMatchesBinary) {
+  Soup soup = make_random_soup(3000, 21);
+  for (std::uint32_t leaf : {1u, 4u, 8u}) {
+    sp::BvhBuildSettings s;
+    s.max_leaf_size = leaf;  // 8: two packets per full leaf
+    s.bins = leaf == 8u ? 2u : 16u;
+    sp::Bvh bvh = soup.build(s);
+    check_wide_invariants(bvh);
+    Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-12), vec3(12), 10000, leaf), leaf));
+    EXPECT_GT(a.hits, 5000u);
+  }
+}
+
+// Axis-aligned walls (node bounds planes coincide with faces), coincident
+// walls (exact ties between scene indices), T-junctions, rays that start on
+// surfaces or run inside a wall's plane with zero direction components.
+TEST(WideBvh, RoomsMatchBinary) {
+  Soup soup = make_rooms(4, 3, 2, 2);
+  sp::Bvh bvh = soup.build();
+  check_wide_invariants(bvh);
+  std::vector<Ray> rays = concat(rays_from_surfaces(soup, 30000, 22), rays_along_planes(soup, 20000, 23));
+  rays = concat(rays, rays_in_box(vec3(-1), vec3(21, 13, 7), 10000, 24));
+  Agreement a = expect_same_as_binary(bvh, vary_windows(rays, 25));
+  EXPECT_GT(a.hits, 45000u);
+}
+
+TEST(WideBvh, ClosedShapesMatchBinary) {
+  Soup box;
+  add_box(box, vec3(-2.0f, -1.0f, 0.5f), vec3(3.0f, 1.7f, 4.0f), 8);
+  sp::Bvh box_bvh = box.build();
+  check_wide_invariants(box_bvh);
+  std::vector<Ray> inside = rays_in_box(vec3(-1.9f, -0.9f, 0.6f), vec3(2.9f, 1.6f, 3.9f), 10000, 26);
+  expect_same_as_binary(box_bvh, concat(vary_windows(inside, 27), rays_along_planes(box, 5000, 28)));
+
+  Soup sphere;
+  add_sphere(sphere, vec3(1.0f, -2.0f, 0.5f), 3.0f, 20);
+  sp::Bvh sphere_bvh = sphere.build();
+  check_wide_invariants(sphere_bvh);
+  std::vector<Ray> rays =
+      concat(rays_in_box(vec3(-6, -7, -5), vec3(6, 3, 6), 10000, 29), rays_from_surfaces(sphere, 10000, 30));
+  Agreement a = expect_same_as_binary(sphere_bvh, vary_windows(rays, 31));
+  EXPECT_GT(a.hits, 8000u);
+}
+
+// Leaves of hundreds of triangles (the depth cap) take many packets; the
+// unbalanced tree reaches SP_BVH_MAX_DEPTH levels, the stack's bound.
+TEST(WideBvh, DepthCapAndDeepTreesMatchBinary) {
+  Soup soup = make_identical_centroids(5000);
+  for (std::uint32_t depth : {4u, std::uint32_t{SP_BVH_MAX_DEPTH}}) {
+    sp::BvhBuildSettings s;
+    s.max_depth = depth;
+    sp::Bvh bvh = soup.build(s);
+    check_wide_invariants(bvh);
+    Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(0), vec3(2, 3, 4), 4000, depth), depth));
+    EXPECT_GT(a.hits, 1000u);
+  }
+
+  Soup deep;
+  for (int i = 0; i < 60; ++i) {
+    float x = std::ldexp(1.0f, i);
+    deep.tri(vec3(x, 0, 0), vec3(x, 1, 0), vec3(x, 0, 1));
+  }
+  sp::BvhBuildSettings s;
+  s.max_leaf_size = 1;
+  s.bins = 2;
+  sp::Bvh bvh = deep.build(s);
+  ASSERT_EQ(bvh.depth, std::uint32_t{SP_BVH_MAX_DEPTH});
+  check_wide_invariants(bvh);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 60; ++i) {
+    rays.push_back({vec3(0.0f, 0.25f, 0.25f), vec3(1, 0, 0), std::ldexp(0.75f, i), 1e18f});
+    rays.push_back({vec3(std::ldexp(1.5f, i), 0.25f, 0.25f), vec3(-1, 0, 0), 0.0f, SP_FAR});
+  }
+  Agreement a = expect_same_as_binary(bvh, rays);
+  EXPECT_EQ(a.hits, rays.size());
+}
+
+// One to three triangles: a leaf root (one slot) and wide nodes with unused
+// slots, whose NaN bounds must miss even for an unbounded window.
+TEST(WideBvh, TinyTreesMatchBinary) {
+  Soup soup;
+  soup.tri(vec3(0, 0, 2), vec3(1, 0, 2), vec3(0, 1, 2));
+  soup.tri(vec3(3, 0, 2), vec3(4, 0, 2), vec3(3, 1, 2));
+  soup.tri(vec3(0, 3, 5), vec3(1, 3, 5), vec3(0, 4, 5));
+  for (std::uint32_t n = 1; n <= 3; ++n) {
+    Soup part;
+    part.vertices.assign(soup.vertices.begin(), soup.vertices.begin() + 3 * n);
+    part.layers.assign(n, 0u);
+    sp::BvhBuildSettings s;
+    s.max_leaf_size = 1;
+    sp::Bvh bvh = part.build(s);
+    check_wide_invariants(bvh);
+    if (n == 1) {
+      EXPECT_EQ(bvh.wide->nodes.size(), 1u);
+    }
+    Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-1), vec3(5, 5, 6), 3000, 40 + n), n));
+    EXPECT_GT(a.hits, 0u);
+  }
+}
+
+// Coincident copies in separate leaves: the lower scene index wins whatever
+// the order the leaves are entered in.
+TEST(WideBvh, CoincidentTrianglesMatchBinary) {
+  Soup soup = make_random_soup(500, 32);
+  const vec3 a(0, 0, 5), b(2, 0, 5), c(0, 2, 5);
+  for (std::size_t i : {std::size_t{0}, std::size_t{3 * 250}, soup.vertices.size() - 3}) {
+    soup.vertices[i] = a;
+    soup.vertices[i + 1] = b;
+    soup.vertices[i + 2] = c;
+  }
+  sp::BvhBuildSettings s;
+  s.max_leaf_size = 1;
+  sp::Bvh bvh = soup.build(s);
+  check_wide_invariants(bvh);
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<float> u(0.05f, 0.9f);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 target(u(rng), u(rng), 5.0f);
+    const vec3 o(u(rng) * 20.0f - 10.0f, u(rng) * 20.0f - 10.0f, i % 2 ? -15.0f : 25.0f);
+    rays.push_back({o, glm::normalize(target - o), 0.0f, kNoLimit});
+  }
+  Agreement hits = expect_same_as_binary(bvh, rays);
+  EXPECT_GT(hits.hits, 1900u);
+  const sp::HitInfo h = sp::closest_hit(bvh, vec3(0.5f, 0.5f, -20.0f), vec3(0, 0, 1), 0.0f, kNoLimit);
+  ASSERT_NE(h.triangle, SP_INVALID);
+  EXPECT_EQ(bvh.triangles[h.triangle].scene_index, 0u);
+}
+
+// Copies of a Bvh share the immutable wide tree; without one, closest_hit
+// walks the binary nodes and answers the same.
+TEST(WideBvh, CopiesShareTheTreeAndNullFallsBack) {
+  Soup soup = make_rooms(2, 2, 1, 2);
+  const sp::Bvh bvh = soup.build();
+  sp::Bvh copy = bvh;
+  EXPECT_EQ(copy.wide, bvh.wide);
+  sp::Bvh moved = std::move(copy);
+  EXPECT_EQ(moved.wide, bvh.wide);
+  moved.wide.reset();
+  for (const Ray& r : rays_from_surfaces(soup, 2000, 34)) {
+    const sp::HitInfo w = sp::closest_hit(bvh, r.origin, r.dir, r.tmin, r.tmax);
+    const sp::HitInfo b = sp::closest_hit(moved, r.origin, r.dir, r.tmin, r.tmax);
+    ASSERT_EQ(w.triangle, b.triangle);
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(w.t), std::bit_cast<std::uint32_t>(b.t));
+  }
+}
+
+}  // namespace
