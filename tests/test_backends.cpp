@@ -6,39 +6,22 @@
 #include <gtest/gtest.h>
 
 #include "support/gpu_environment.h"
+#include "support/run_steps.h"
 #include "support/scene_builder.h"
 
 namespace sp {
 namespace {
 
-struct Outcome {
-  std::vector<Indicator> indicators;
-  std::vector<Indicator> live;
-  SimulationStats stats;
-};
+using Outcome = test::Recorded;
+using test::closed_room;
 
 class BackendPhysics : public test::GpuTest, public ::testing::WithParamInterface<Backend> {
  protected:
   Outcome run(const Scene& scene, const Config& config, int steps) {
     auto sim = make_simulator(make_world(scene, config).value(), GetParam());
-    Outcome out;
-    for (int n = 0; n < steps; ++n) {
-      EXPECT_TRUE(sim->step().ok());
-      auto step = sim->last_step_indicators().value();
-      out.indicators.insert(out.indicators.end(), step.begin(), step.end());
-    }
-    out.live = sim->live_indicators().value();
-    out.stats = sim->stats().value();
-    return out;
+    return test::run_steps(*sim, static_cast<std::uint64_t>(steps));
   }
 };
-
-Scene closed_room() {
-  Scene scene;
-  test::add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
-  scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
-  return scene;
-}
 
 Config base_config() {
   Config c;

@@ -10,28 +10,19 @@
 #include <gtest/gtest.h>
 
 #include "support/gpu_environment.h"
+#include "support/run_steps.h"
 #include "support/scene_builder.h"
 
 namespace sp {
 namespace {
 
-struct Trace {
-  std::vector<Indicator> indicators;
-  SimulationStats stats;
-};
+using Trace = test::Recorded;
 
 class GpuParity : public test::GpuTest {
  protected:
   Trace run(const Scene& scene, const Config& config, Backend backend, int steps) {
     auto sim = make_simulator(make_world(scene, config).value(), backend);
-    Trace trace;
-    for (int n = 0; n < steps; ++n) {
-      EXPECT_TRUE(sim->step().ok());
-      auto step = sim->last_step_indicators().value();
-      trace.indicators.insert(trace.indicators.end(), step.begin(), step.end());
-    }
-    trace.stats = sim->stats().value();
-    return trace;
+    return test::run_steps(*sim, static_cast<std::uint64_t>(steps));
   }
 
   void expect_parity(const Scene& scene, const Config& config, int steps) {
@@ -83,9 +74,7 @@ Config base_config() {
 }
 
 TEST_F(GpuParity, ReflectingRoom) {
-  Scene scene;
-  test::add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
-  scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
+  Scene scene = test::closed_room();
   Config config = base_config();
   config.layers["concrete"] = {0.95f, 4.0f};
   expect_parity(scene, config, 3);

@@ -12,34 +12,18 @@
 #include "sim/step_plan.h"
 #include "soundpaint/simulation.h"
 #include "sp_random.h"
+#include "support/run_steps.h"
 #include "support/scene_builder.h"
 
 namespace sp {
 namespace {
 
-struct SimRun {
-  std::vector<Indicator> indicators;
-  SimulationStats stats;
-};
+using test::closed_room;
+using SimRun = test::Recorded;
 
 SimRun simulate(const Scene& scene, const Config& config, std::uint64_t steps, unsigned threads = 2) {
   auto sim = create_cpu_simulator(make_world(scene, config).value(), CpuSettings{threads}).value();
-  SimRun run;
-  for (std::uint64_t n = 0; n < steps; ++n) {
-    EXPECT_TRUE(sim->step().ok());
-    auto step = sim->last_step_indicators().value();
-    run.indicators.insert(run.indicators.end(), step.begin(), step.end());
-  }
-  run.stats = sim->stats().value();
-  return run;
-}
-
-// A 6 x 3 x 5 m room with 0.3 m walls and one source at its centre.
-Scene closed_room() {
-  Scene scene;
-  test::add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
-  scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
-  return scene;
+  return test::run_steps(*sim, steps);
 }
 
 Config quiet_config() {
@@ -53,7 +37,7 @@ Config quiet_config() {
 TEST(Simulation, ReflectionFractionMatchesReflectProbability) {
   Config config = quiet_config();
   config.layers["concrete"] = {0.3f, 0.0f};
-  config.max_wall_thickness = 0.1f;  // walls are 0.3 m: every penetration is absorbed
+  config.max_wall_thickness = 0.1f;  // walls are 0.3 m: penetrations are absorbed
   config.air_attenuation = 0.0f;
   config.bounce_energy_loss = 0.0f;
   config.max_bounces = 10;

@@ -48,4 +48,13 @@ inline SourceDesc source_at(glm::vec3 position, float max_distance = 100.0f) {
   return s;
 }
 
+// A 6 x 3 x 5 m concrete room with 0.3 m walls and one always-playing
+// source near its centre; the listener must come from the config.
+inline Scene closed_room() {
+  Scene scene;
+  add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
+  scene.sources.push_back(source_at({0.5f, 1.5f, 0.2f}));
+  return scene;
+}
+
 }  // namespace sp::test
