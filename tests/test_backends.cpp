@@ -187,9 +187,3 @@ INSTANTIATE_TEST_SUITE_P(Backends, BackendPhysics, ::testing::Values(Backend::Cp
 
 }  // namespace
 }  // namespace sp
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ::testing::AddGlobalTestEnvironment(new sp::test::GpuEnvironment);
-  return RUN_ALL_TESTS();
-}

@@ -132,9 +132,3 @@ TEST_F(GpuParity, BundledLevel) {
 
 }  // namespace
 }  // namespace sp
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ::testing::AddGlobalTestEnvironment(new sp::test::GpuEnvironment);
-  return RUN_ALL_TESTS();
-}

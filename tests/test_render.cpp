@@ -263,9 +263,3 @@ TEST_F(Render, GoldenTwoRooms) {
 
 }  // namespace
 }  // namespace sp
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ::testing::AddGlobalTestEnvironment(new sp::test::GpuEnvironment);
-  return RUN_ALL_TESTS();
-}
