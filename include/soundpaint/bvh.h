@@ -23,6 +23,11 @@ struct BvhBuildSettings {
   std::uint32_t max_leaf_size = 4;    // leaves never hold more unless the depth cap forces it
   float traversal_cost = 1.0f;        // SAH cost of visiting a node, relative to one triangle test
   std::uint32_t max_depth = SP_BVH_MAX_DEPTH;  // levels including the root; <= SP_BVH_MAX_DEPTH
+  // Threads the build may use: 0 means std::thread::hardware_concurrency(),
+  // 1 builds on the calling thread only. Subtrees near the root are built
+  // concurrently and spliced in a fixed order, so the result (nodes,
+  // triangles, depth) is byte-identical for every value.
+  unsigned threads = 0;
 };
 
 // The CPU's 4-wide tree (src/bvh/wide_bvh.h); opaque outside the bvh module.

@@ -18,6 +18,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <future>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include "bvh/bvh_geometry.h"
@@ -33,6 +36,31 @@ constexpr std::uint32_t kMaxBins = 256;
 // Up to this many triangles, sorting the centroids on each axis and sweeping
 // every split is cheaper than binning, and exact.
 constexpr std::uint32_t kSmallNode = 8;
+// A node this large or larger may hand its right subtree to another thread
+// (near the root only; see Builder::spawn_levels_). Smaller subtrees are not
+// worth a thread start.
+constexpr std::uint32_t kParallelMin = 16384;
+
+// Runs f(begin, end) over [0, count): split in two halves, one on another
+// thread, when `parallel` (and a thread can be started), else in one call.
+// For loops whose iterations write disjoint elements only.
+template <class F>
+void for_halves(bool parallel, std::uint32_t count, F&& f) {
+  if (parallel) {
+    const std::uint32_t mid = count / 2u;
+    std::future<void> other;
+    try {
+      other = std::async(std::launch::async, [&f, mid] { f(0u, mid); });
+    } catch (const std::system_error&) {
+      f(0u, count);
+      return;
+    }
+    f(mid, count);
+    other.get();
+    return;
+  }
+  f(0u, count);
+}
 
 // One triangle's bounds. The centroid used for splitting is the bounds
 // centre, kept doubled (lo + hi) because only its order matters. 32 bytes, so
@@ -82,7 +110,13 @@ struct Split {
 class Builder {
  public:
   Builder(std::span<const glm::vec3> vertices, std::uint32_t count, const BvhBuildSettings& settings, Bvh& bvh)
-      : bvh_(bvh) {
+      : nodes_(&bvh.nodes) {
+    unsigned threads = settings.threads != 0u ? settings.threads : std::thread::hardware_concurrency();
+    // Levels (root = 1) whose nodes may build their right subtree on another
+    // thread: enough subtrees for ~2 per thread, so an uneven split still
+    // keeps every core busy. Where the work runs never changes the output.
+    for (unsigned t = 1; t < threads && spawn_levels_ < 8u; t *= 2u) ++spawn_levels_;
+    if (spawn_levels_ > 0u) ++spawn_levels_;
     bins_ = std::clamp(settings.bins, 2u, kMaxBins);
     max_leaf_size_ = std::max(settings.max_leaf_size, 1u);
     max_depth_ = std::clamp(settings.max_depth, 1u, static_cast<std::uint32_t>(SP_BVH_MAX_DEPTH));
@@ -90,45 +124,110 @@ class Builder {
 
     records_.resize(count);
     indices_.resize(count);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const glm::vec3* v = &vertices[3u * std::size_t{i}];
-      // Bounds of the vertices make_bvh_triangle stores: a degenerate
-      // triangle is collapsed onto v[0].
-      const Vec4 v0 = to_vec4(v[0]);
-      records_[i] = is_degenerate(v) ? Record{v0, v0}
-                                     : Record{vmin(vmin(v0, to_vec4(v[1])), to_vec4(v[2])),
-                                              vmax(vmax(v0, to_vec4(v[1])), to_vec4(v[2]))};
-      indices_[i] = i;
-    }
-    for (int a = 0; a < 3; ++a) {
-      bin_boxes_[a].resize(bins_);
-      bin_counts_[a].resize(bins_);
-    }
-    right_area_.resize(bins_);
-    right_count_.resize(bins_);
+    for_halves(parallel(count), count, [&](std::uint32_t first, std::uint32_t last) {
+      for (std::uint32_t i = first; i < last; ++i) {
+        const glm::vec3* v = &vertices[3u * std::size_t{i}];
+        // Bounds of the vertices make_bvh_triangle stores: a degenerate
+        // triangle is collapsed onto v[0].
+        const Vec4 v0 = to_vec4(v[0]);
+        records_[i] = is_degenerate(v) ? Record{v0, v0}
+                                       : Record{vmin(vmin(v0, to_vec4(v[1])), to_vec4(v[2])),
+                                                vmax(vmax(v0, to_vec4(v[1])), to_vec4(v[2]))};
+        indices_[i] = i;
+      }
+    });
+    records_ptr_ = records_.data();
+    indices_ptr_ = indices_.data();
+    allocate_scratch();
     // A binary tree with n leaves has 2n - 1 nodes; reserving that bound
     // means no reallocation during the build.
-    bvh_.nodes.reserve(2u * std::size_t{count} - 1u);
+    nodes_->reserve(2u * std::size_t{count} - 1u);
   }
 
   void build() {
     Box bounds, centroids;
     const auto count = static_cast<std::uint32_t>(records_.size());
     measure(0, count, bounds, centroids);
-    bvh_.nodes.push_back(make_node(bounds));
+    nodes_->push_back(make_node(bounds));
     subdivide(0, 0, count, 1, centroids);
   }
 
   // The input index of each leaf-order triangle.
   const std::vector<std::uint32_t>& leaf_order() const { return indices_; }
+  std::uint32_t depth() const { return depth_; }
+  // Whether a pass over `count` triangles is worth splitting across threads.
+  bool parallel(std::uint32_t count) const { return spawn_levels_ > 0u && count >= kParallelMin; }
 
  private:
+  // A builder for one subtree, run on another thread: it shares the
+  // settings and the records and indices (it touches only its own range of
+  // them), and has its own scratch, depth and node array. `nodes` holds the
+  // subtree's root at index 0, and its descendants follow in the order the
+  // serial build would append them.
+  Builder(const Builder& parent, std::vector<BvhNode>& nodes)
+      : nodes_(&nodes),
+        bins_(parent.bins_),
+        max_leaf_size_(parent.max_leaf_size_),
+        max_depth_(parent.max_depth_),
+        traversal_cost_(parent.traversal_cost_),
+        spawn_levels_(parent.spawn_levels_),
+        records_ptr_(parent.records_ptr_),
+        indices_ptr_(parent.indices_ptr_) {
+    allocate_scratch();
+  }
+
+  void allocate_scratch() {
+    for (int a = 0; a < 3; ++a) {
+      bin_boxes_[a].resize(bins_);
+      bin_counts_[a].resize(bins_);
+    }
+    right_area_.resize(bins_);
+    right_count_.resize(bins_);
+  }
+
+  // Builds the subtree of (*nodes_)[right] (already appended, with its
+  // bounds) on another thread while this one builds the left sibling's, then
+  // splices it in: exactly the nodes, in exactly the order, the serial build
+  // appends after the left subtree. Returns false, having done nothing, if
+  // no thread could be started.
+  bool subdivide_pair_in_parallel(std::uint32_t left, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
+                                  std::uint32_t level, const Box& left_centroids, const Box& right_centroids) {
+    const std::uint32_t right = left + 1u;
+    std::vector<BvhNode> sub;
+    sub.reserve(2u * std::size_t{end - middle} - 1u);
+    sub.push_back((*nodes_)[right]);
+    Builder worker(*this, sub);
+    std::future<void> done;
+    try {
+      done = std::async(std::launch::async,
+                        [&worker, middle, end, level, &right_centroids] {
+                          worker.subdivide(0, middle, end, level, right_centroids);
+                        });
+    } catch (const std::system_error&) {
+      return false;
+    }
+    // If this side throws (bad_alloc), the future's destructor still waits
+    // for the worker before `sub` and `worker` go away.
+    subdivide(left, begin, middle, level, left_centroids);
+    done.get();
+
+    depth_ = std::max(depth_, worker.depth_);
+    // Local index i > 0 becomes offset + i; leaves keep their triangle
+    // index, which is global already.
+    const auto offset = static_cast<std::uint32_t>(nodes_->size() - 1u);
+    for (BvhNode& n : sub) {
+      if (n.count == 0u) n.left_or_first += offset;
+    }
+    (*nodes_)[right] = sub[0];
+    nodes_->insert(nodes_->end(), sub.begin() + 1, sub.end());
+    return true;
+  }
   static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
 
   // Bounds of [begin, end) and of its doubled centroids.
   void measure(std::uint32_t begin, std::uint32_t end, Box& bounds, Box& centroids) const {
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Record& r = records_[i];
+      const Record& r = records_ptr_[i];
       bounds.grow(r.lo, r.hi);
       centroids.grow(r.lo + r.hi);
     }
@@ -136,7 +235,7 @@ class Builder {
 
   void subdivide(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::uint32_t level,
                  const Box& centroids) {
-    bvh_.depth = std::max(bvh_.depth, level);
+    depth_ = std::max(depth_, level);
     const std::uint32_t count = end - begin;
     // The depth cap overrides the leaf size: the traversal stack holds one
     // entry per level and must never overflow.
@@ -155,7 +254,7 @@ class Builder {
     }
     if (count <= max_leaf_size_) {
       // Small enough for a leaf: split only where the SAH says it pays off.
-      const BvhNode& n = bvh_.nodes[node];
+      const BvhNode& n = (*nodes_)[node];
       const float parent_area = half_area(Box{to_vec4(n.bmin), to_vec4(n.bmax)});
       const bool split_pays = split.valid && parent_area > 0.0f &&
                               traversal_cost_ + split.cost / parent_area < static_cast<float>(count);
@@ -179,25 +278,29 @@ class Builder {
     measure(begin, middle, left, left_centroids);
     measure(middle, end, right, right_centroids);
 
-    const auto children = static_cast<std::uint32_t>(bvh_.nodes.size());
-    bvh_.nodes[node].left_or_first = children;
-    bvh_.nodes[node].count = 0u;
-    bvh_.nodes.push_back(make_node(left));
-    bvh_.nodes.push_back(make_node(right));
+    const auto children = static_cast<std::uint32_t>(nodes_->size());
+    (*nodes_)[node].left_or_first = children;
+    (*nodes_)[node].count = 0u;
+    nodes_->push_back(make_node(left));
+    nodes_->push_back(make_node(right));
+    if (level <= spawn_levels_ && count >= kParallelMin &&
+        subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, left_centroids, right_centroids)) {
+      return;
+    }
     subdivide(children, begin, middle, level + 1u, left_centroids);
     subdivide(children + 1u, middle, end, level + 1u, right_centroids);
   }
 
   void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
-    bvh_.nodes[node].left_or_first = begin;
-    bvh_.nodes[node].count = count;
+    (*nodes_)[node].left_or_first = begin;
+    (*nodes_)[node].count = count;
   }
 
   // Exact SAH for a small node: on each axis, sort by centroid (insertion
   // sort; count <= kSmallNode) and sweep every split position. Coincident
   // centroids still split by position, so the split is always valid.
   Split find_small_split(std::uint32_t begin, std::uint32_t count) {
-    const Record* r = &records_[begin];
+    const Record* r = &records_ptr_[begin];
     Split best;
     if (count == 2u) {  // the most common case has one candidate, in place
       best = Split{true, 0, 1, half_area(Box{r[0].lo, r[0].hi}) + half_area(Box{r[1].lo, r[1].hi})};
@@ -241,11 +344,11 @@ class Builder {
     std::uint32_t indices[kSmallNode];
     const std::uint8_t* order = small_order_[split.axis];
     for (std::uint32_t i = 0; i < count; ++i) {
-      records[i] = records_[begin + order[i]];
-      indices[i] = indices_[begin + order[i]];
+      records[i] = records_ptr_[begin + order[i]];
+      indices[i] = indices_ptr_[begin + order[i]];
     }
-    std::copy_n(records, count, &records_[begin]);
-    std::copy_n(indices, count, &indices_[begin]);
+    std::copy_n(records, count, &records_ptr_[begin]);
+    std::copy_n(indices, count, &indices_ptr_[begin]);
   }
 
   // Evaluates the bins - 1 planes of each axis with one pass over the
@@ -257,7 +360,7 @@ class Builder {
       std::fill_n(bin_counts_[a].begin(), bins, 0u);
     }
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Record& r = records_[i];
+      const Record& r = records_ptr_[i];
       const Int4 b = binning.bin(r.lo + r.hi);
       for (int a = 0; a < 3; ++a) {
         const auto k = static_cast<std::uint32_t>(b[a]);
@@ -302,25 +405,29 @@ class Builder {
   std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split) {
     std::uint32_t middle = begin;
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Record r = records_[i];
-      const std::uint32_t index = indices_[i];
+      const Record r = records_ptr_[i];
+      const std::uint32_t index = indices_ptr_[i];
       const bool left = binning.bin(r.lo + r.hi)[split.axis] <= split.last_left;
-      records_[i] = records_[middle];
-      indices_[i] = indices_[middle];
-      records_[middle] = r;
-      indices_[middle] = index;
+      records_ptr_[i] = records_ptr_[middle];
+      indices_ptr_[i] = indices_ptr_[middle];
+      records_ptr_[middle] = r;
+      indices_ptr_[middle] = index;
       middle += left ? 1u : 0u;
     }
     return middle;
   }
 
-  Bvh& bvh_;
+  std::vector<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
+  std::uint32_t depth_ = 0;
   std::uint32_t bins_ = 16;
   std::uint32_t max_leaf_size_ = 4;
   std::uint32_t max_depth_ = SP_BVH_MAX_DEPTH;
   float traversal_cost_ = 1.0f;
-  std::vector<Record> records_;
+  std::uint32_t spawn_levels_ = 0;  // 0: single-threaded
+  std::vector<Record> records_;       // owned by the top-level builder only
   std::vector<std::uint32_t> indices_;
+  Record* records_ptr_ = nullptr;     // records_ of the top-level builder
+  std::uint32_t* indices_ptr_ = nullptr;
   std::vector<Box> bin_boxes_[3];  // per axis
   std::vector<std::uint32_t> bin_counts_[3];
   std::vector<float> right_area_;
@@ -341,20 +448,34 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
 
   Builder builder(vertices, count, settings, bvh);
   builder.build();
+  bvh.depth = builder.depth();
 
-  bvh.triangles.reserve(count);  // not resize(): every element is written once
   const std::vector<std::uint32_t>& order = builder.leaf_order();
   // A gather in random order: prefetching a few triangles ahead hides most
   // of the cache misses.
   constexpr std::uint32_t kPrefetch = 16;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    if (i + kPrefetch < count) {
-      const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
-      __builtin_prefetch(ahead);
-      __builtin_prefetch(ahead + 2);
+  auto gather = [&](std::uint32_t first, std::uint32_t last, auto&& store) {
+    for (std::uint32_t i = first; i < last; ++i) {
+      if (i + kPrefetch < last) {
+        const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
+        __builtin_prefetch(ahead);
+        __builtin_prefetch(ahead + 2);
+      }
+      const std::uint32_t source = order[i];
+      store(i, make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source));
     }
-    const std::uint32_t source = order[i];
-    bvh.triangles.push_back(make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source));
+  };
+  if (builder.parallel(count)) {
+    // Two halves written in place; the zeroing resize() costs less than the
+    // second core saves.
+    bvh.triangles.resize(count);
+    BvhTriangle* out = bvh.triangles.data();
+    for_halves(true, count, [&](std::uint32_t first, std::uint32_t last) {
+      gather(first, last, [out](std::uint32_t i, const BvhTriangle& t) { out[i] = t; });
+    });
+  } else {
+    bvh.triangles.reserve(count);  // not resize(): every element is written once
+    gather(0u, count, [&bvh](std::uint32_t, const BvhTriangle& t) { bvh.triangles.push_back(t); });
   }
   // The CPU backend's 4-wide copy (wide_bvh.h): one linear pass, ~0.3 ms
   // of the ~2.5 ms build of scenes/level.gltf.
