@@ -1,8 +1,23 @@
 #!/usr/bin/env bash
-# The whole test suite: installs dependencies if missing, builds with
-# -Werror, runs every test through ctest.
+# The whole test suite: installs dependencies if missing; runs the CPU-side
+# suites (bad scene and config input, BVH, ray model, simulation) under
+# AddressSanitizer + UndefinedBehaviorSanitizer; then builds with -Werror and
+# runs every test through ctest, whose summary closes the output.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+
+echo "== sanitizers (ASan + UBSan, optimised build in build-asan/)"
+sanitized_tests=(test_scene test_config test_bvh test_wide_bvh test_ray_model test_simulation)
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOUNDPAINT_SANITIZE=ON -DSOUNDPAINT_WERROR=ON \
+  -DSOUNDPAINT_BUILD_BENCH=OFF >/dev/null
+cmake --build build-asan -j"$(nproc)" --target "${sanitized_tests[@]}"
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+for t in "${sanitized_tests[@]}"; do
+  ./build-asan/tests/"$t" --gtest_brief=1
+done
+echo "== sanitizers: ${#sanitized_tests[@]} suites clean"
+
+echo "== full suite (Release, -Werror, build/)"
 bash scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
