@@ -123,6 +123,24 @@ Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSe
 // ray budget exceeds a device limit (each buffer names itself).
 Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSettings& settings = {});
 
+enum class BackendChoice { Cpu, Gpu, Auto };
+
+struct SimulatorSettings {
+  BackendChoice backend = BackendChoice::Auto;
+  CpuSettings cpu;
+  GpuSettings gpu;  // allow_cpu_device is decided by `backend`
+};
+
+// Creates a simulator by the backend policy every front end shares.
+// Cpu / Gpu: that backend (Gpu takes any Vulkan 1.3 device, lavapipe too).
+// Auto: the GPU backend on a hardware GPU, else the CPU backend, which does
+// the same work faster on a CPU-type Vulkan device; `fallback_reason`, when
+// given, receives why the GPU was not used (left empty when it was). Only a
+// missing or unusable device (ErrorCode::Vulkan) falls back: other GPU
+// errors, such as a budget beyond a device limit, are returned.
+Result<std::unique_ptr<Simulator>> create_simulator(World world, const SimulatorSettings& settings,
+                                                    std::string* fallback_reason = nullptr);
+
 // Opacity of an indicator of the given age (SPEC 1.4).
 float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds);
 

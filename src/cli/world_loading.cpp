@@ -31,36 +31,32 @@ BackendChoice parse_backend(const std::string& name) {
 
 const char* backend_name(Backend backend) { return backend == Backend::Gpu ? "gpu" : "cpu"; }
 
+namespace {
+
+// The library decides; the CLI only says why when auto fell back.
+std::unique_ptr<Simulator> report(Result<std::unique_ptr<Simulator>> made, const std::string& fallback_reason) {
+  if (!made) throw Exception(made.error());
+  if (!fallback_reason.empty())
+    std::fprintf(stderr, "soundpaint: GPU backend not used (%s); using the CPU backend\n", fallback_reason.c_str());
+  return std::move(made.value());
+}
+
+}  // namespace
+
 std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads) {
-  if (backend != BackendChoice::Cpu) {
-    // auto wants a real GPU: on a CPU-only Vulkan device (lavapipe) the CPU
-    // backend does the same work faster. --backend gpu takes any device.
-    GpuSettings settings;
-    settings.allow_cpu_device = backend == BackendChoice::Gpu;
-    auto gpu = create_gpu_simulator(world, settings);
-    if (gpu) return std::move(gpu.value());
-    if (backend == BackendChoice::Gpu || gpu.error().code != ErrorCode::Vulkan) throw Exception(gpu.error());
-    std::fprintf(stderr, "soundpaint: GPU backend not used (%s); using the CPU backend\n",
-                 gpu.error().message.c_str());
-  }
-  return std::move(create_cpu_simulator(std::move(world), CpuSettings{cpu_threads}).value());
+  SimulatorSettings settings;
+  settings.backend = backend;
+  settings.cpu.threads = cpu_threads;
+  std::string fallback_reason;
+  auto made = sp::create_simulator(std::move(world), settings, &fallback_reason);
+  return report(std::move(made), fallback_reason);
 }
 
 std::unique_ptr<Simulator> create_simulator_on(vk::Context& context, World world, BackendChoice backend,
                                                unsigned cpu_threads) {
-  // The same policy as create_simulator: auto wants a real GPU, since on a
-  // CPU-only Vulkan device the CPU backend does the same work faster.
-  const bool cpu_device = context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  if (backend == BackendChoice::Auto && cpu_device) {
-    std::fprintf(stderr, "soundpaint: GPU backend not used (the only Vulkan device is a CPU device (%s)); "
-                 "using the CPU backend\n", context.properties().deviceName);
-  } else if (backend != BackendChoice::Cpu) {
-    auto gpu = gpu::create_simulator(world, context);
-    if (gpu) return std::move(gpu.value());
-    if (backend == BackendChoice::Gpu || gpu.error().code != ErrorCode::Vulkan) throw Exception(gpu.error());
-    std::fprintf(stderr, "soundpaint: GPU backend not used (%s); using the CPU backend\n", gpu.error().message.c_str());
-  }
-  return std::move(create_cpu_simulator(std::move(world), CpuSettings{cpu_threads}).value());
+  std::string fallback_reason;
+  auto made = gpu::create_simulator_on(context, std::move(world), backend, CpuSettings{cpu_threads}, &fallback_reason);
+  return report(std::move(made), fallback_reason);
 }
 
 }  // namespace sp::cli

@@ -30,7 +30,6 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
 World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
                  std::optional<std::uint64_t> seed_override);
 
-enum class BackendChoice { Cpu, Gpu, Auto };
 
 // "cpu", "gpu" or "auto"; throws naming --backend otherwise.
 BackendChoice parse_backend(const std::string& name);

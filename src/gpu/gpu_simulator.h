@@ -13,6 +13,11 @@ namespace sp::gpu {
 // one context per binary this way).
 Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context);
 
+// sp::create_simulator's policy on an existing context (the renderer's):
+// Auto takes the CPU backend when `context` is a CPU-type device.
+Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, World world, BackendChoice backend,
+                                                       const CpuSettings& cpu, std::string* fallback_reason);
+
 // Where a GPU simulator keeps its indicators, for a draw pass on the same
 // device: the ring of shader::Indicator and the VkDrawIndirectCommand whose
 // instanceCount the compute pass keeps equal to the ring's filled slots
