@@ -6,6 +6,7 @@
 #include "draw/image_barrier.h"
 #include "soundpaint/result.h"
 #include "vk/barriers.h"
+#include "vk/buffer.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
@@ -32,21 +33,8 @@ DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::u
 
   VkMemoryRequirements requirements{};
   vkGetImageMemoryRequirements(device, raw_image, &requirements);
-  VkMemoryAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  allocate.allocationSize = requirements.size;
-  allocate.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory raw_memory = VK_NULL_HANDLE;
-  const VkResult result = vkAllocateMemory(device, &allocate, nullptr, &raw_memory);
-  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    throw Exception(Error{ErrorCode::LimitExceeded,
-                          std::string(name) + ": cannot allocate " + std::to_string(requirements.size) + " bytes (" +
-                              vk::result_name(result) + ")",
-                          static_cast<int>(result)});
-  }
-  SP_VK_CHECK(result);
-  memory_ = vk::UniqueMemory(device, raw_memory);
-  context.set_name(VK_OBJECT_TYPE_DEVICE_MEMORY, raw_memory, (std::string(name) + " memory").c_str());
+  memory_ = vk::allocate_memory(context, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, name);
+  const VkDeviceMemory raw_memory = memory_.get();
   SP_VK_CHECK(vkBindImageMemory(device, raw_image, raw_memory, 0));
 
   // Views are for attachments; transfers address the image itself.

@@ -67,25 +67,31 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usa
   VkMemoryRequirements requirements{};
   vkGetBufferMemoryRequirements(device, raw_buffer, &requirements);
   const MemoryFlags flags = memory_flags(memory);
-  VkMemoryAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  allocate.allocationSize = requirements.size;
-  allocate.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, flags.required, flags.preferred);
-  VkDeviceMemory raw_memory = VK_NULL_HANDLE;
-  const VkResult result = vkAllocateMemory(device, &allocate, nullptr, &raw_memory);
-  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
-    throw Exception(
-        Error{ErrorCode::LimitExceeded,
-              label + ": cannot allocate " + std::to_string(requirements.size) + " bytes (" + result_name(result) + ")",
-              static_cast<int>(result)});
-  }
-  SP_VK_CHECK(result);
-  memory_ = UniqueMemory(device, raw_memory);
-  context.set_name(VK_OBJECT_TYPE_DEVICE_MEMORY, raw_memory, (label + " memory").c_str());
+  memory_ = allocate_memory(context, requirements, flags.required, flags.preferred, label);
+  const VkDeviceMemory raw_memory = memory_.get();
 
   SP_VK_CHECK(vkBindBufferMemory(device, raw_buffer, raw_memory, 0));
   // Mapped for the buffer's lifetime; vkFreeMemory unmaps.
   if (memory != MemoryUsage::DeviceLocal) SP_VK_CHECK(vkMapMemory(device, raw_memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+UniqueMemory allocate_memory(const Context& context, const VkMemoryRequirements& requirements,
+                             VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred, const std::string& name) {
+  VkMemoryAllocateInfo allocate{};
+  allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  allocate.allocationSize = requirements.size;
+  allocate.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, required, preferred);
+  VkDeviceMemory raw_memory = VK_NULL_HANDLE;
+  const VkResult result = vkAllocateMemory(context.device(), &allocate, nullptr, &raw_memory);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    throw Exception(
+        Error{ErrorCode::LimitExceeded,
+              name + ": cannot allocate " + std::to_string(requirements.size) + " bytes (" + result_name(result) + ")",
+              static_cast<int>(result)});
+  }
+  SP_VK_CHECK(result);
+  context.set_name(VK_OBJECT_TYPE_DEVICE_MEMORY, raw_memory, (name + " memory").c_str());
+  return UniqueMemory(context.device(), raw_memory);
 }
 
 // The host <-> device copies below, with the hazards each barrier resolves.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <utility>
 
 #include <vulkan/vulkan.h>
@@ -53,6 +54,13 @@ class Buffer {
   VkDeviceSize size_ = 0;
   void* mapped_ = nullptr;
 };
+
+// Allocates device memory meeting `requirements`, with all `required` and
+// preferably the `preferred` property flags, debug-named "<name> memory".
+// Out of memory is sp::Exception(LimitExceeded) naming `name` and the size;
+// other failures are ErrorCode::Vulkan. Shared by buffers and images.
+UniqueMemory allocate_memory(const Context& context, const VkMemoryRequirements& requirements,
+                             VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred, const std::string& name);
 
 // Copies `bytes` into `destination` at `offset` through a staging buffer
 // (or directly if it is mapped) and waits. Not for the hot path. An unmapped
