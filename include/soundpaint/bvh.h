@@ -63,4 +63,44 @@ HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
 // The same query by testing every triangle; for tests and validation.
 HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
+// Leaf-order entries whose contents changed, as sorted, disjoint, half-open
+// index ranges [first, last); lets a GPU copy upload only what moved.
+struct BvhIndexRange {
+  std::uint32_t first = 0;
+  std::uint32_t last = 0;
+};
+struct BvhChanges {
+  std::vector<BvhIndexRange> nodes;      // into Bvh::nodes
+  std::vector<BvhIndexRange> triangles;  // into Bvh::triangles
+};
+
+// Moves the triangles to `vertices` (3 per triangle, in scene order, i.e.
+// indexed by BvhTriangle::scene_index, same count as at build) keeping the
+// tree's topology, so that a moving mesh (an opening door) costs one linear
+// pass instead of a rebuild: recomputes each triangle's corners and normal
+// exactly as build_bvh does, then every node's bounds bottom-up (exact
+// unions, as build_bvh makes them: no padding), then the wide copy, freshly
+// allocated when there was one (copies of the Bvh keep the old one) and left
+// null when there was none. Layers are kept.
+// Returns what changed, by bitwise comparison of old and new entries; ranges
+// at most 16 unchanged entries apart are merged into one. A bound equal as a
+// float to the old one (+0 and -0) keeps its old bits, so unchanged vertices
+// report no change whatever order build_bvh scanned them in.
+// Throws sp::Exception(ErrorCode::InvalidArgument), leaving `bvh` untouched,
+// when vertices.size() != 3 * triangle_count(), a vertex is not finite, or
+// the tree is not shaped as build_bvh makes it (children after their parent,
+// ranges inside the arrays, scene indices below triangle_count()).
+BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices);
+
+// Surface-area-heuristic cost of the tree relative to its root box: sum over
+// inner nodes of area(node) / area(root) * traversal_cost, plus sum over
+// leaves of area(leaf) / area(root) * count. Refitting after large motions
+// raises it; callers rebuild when it has grown too much. Being relative to
+// the root, it compares trees over about the same root box: a motion that
+// mostly grows the root (a mesh leaving the scene) can lower it. When the
+// root's area is 0 (every triangle on one line or point), so is every
+// node's, and each 0/0 counts as 1: the cost of visiting every node. 0 for
+// an empty tree.
+double bvh_sah_cost(const Bvh& bvh, float traversal_cost = 1.0f);
+
 }  // namespace sp
