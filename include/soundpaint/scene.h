@@ -27,6 +27,9 @@ struct Camera {
   glm::vec3 position() const { return glm::vec3(world[3]); }
 };
 
+// Scene::triangle_instances value of a triangle that never moves.
+inline constexpr std::uint32_t kStaticInstance = 0xFFFFFFFFu;
+
 struct Scene {
   std::filesystem::path path;               // where it was loaded from, if from a file
   std::vector<glm::vec3> vertices;          // 3 per triangle, world space, metres
@@ -34,6 +37,12 @@ struct Scene {
   std::vector<std::string> layer_names;     // distinct layer names, in first-use order
   std::vector<SourceDesc> sources;          // in node order (depth-first over the default scene)
   std::optional<Camera> camera;             // the first camera node: listener and render camera
+  // Moving parts (doors, lifts): per triangle, an index into instance_names
+  // or kStaticInstance; empty when nothing moves. A simulation places an
+  // instance's triangles with SoundScene::set_instance_transform, relative
+  // to the positions in `vertices` (the rest pose).
+  std::vector<std::uint32_t> triangle_instances;
+  std::vector<std::string> instance_names;
 
   std::size_t triangle_count() const { return triangle_layers.size(); }
 };

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "soundpaint/bvh.h"
@@ -22,7 +23,8 @@ namespace sp {
 using Indicator = shader::Indicator;
 
 // Everything a backend needs, resolved once: geometry, per-layer acoustics,
-// sources (scene's then config's) and the listener.
+// sources (scene's then config's) and the listener. A running simulation
+// keeps its World in a SoundScene, which changes sources and moving parts.
 struct World {
   Config config;
   Bvh bvh;
@@ -30,7 +32,19 @@ struct World {
   std::vector<LayerProperties> layer_properties;  // per layer id
   std::vector<std::uint32_t> layer_triangle_counts;
   std::vector<SourceDesc> sources;                // source id == index
+  // Per source id: false once removed (SoundScene::remove_source); the slot
+  // keeps its last description and a later add_source may reuse it.
+  std::vector<bool> source_active;
   glm::vec3 listener{0.0f};
+
+  // Moving parts (Scene::instance_names); empty when the scene has none.
+  // Kept so that an instance transform can re-place its triangles.
+  std::vector<std::string> instance_names;
+  std::vector<glm::mat4> instance_transforms;      // per instance, applied to the rest pose
+  std::vector<glm::vec3> rest_vertices;            // scene's vertices, 3 per triangle
+  std::vector<std::uint32_t> triangle_instances;   // per triangle, or kStaticInstance
+  std::vector<std::uint32_t> triangle_layers;      // per triangle (scene order), for rebuilds
+  double build_sah_cost = 0.0;  // the BVH's absolute SAH cost after its last build (set by SoundScene)
 };
 
 // Resolves scene + config. Errors: no listener (neither a camera in the scene
@@ -53,6 +67,84 @@ struct SimulationStats {
   std::uint64_t rays_emitted = 0;
   std::uint64_t indicators = 0;        // every indicator created
   std::vector<LayerCounters> layers;   // per layer id
+};
+
+// Sources a SoundScene holds unless the world starts with more: one GPU
+// step's source table (48 bytes each) then fits one vkCmdUpdateBuffer.
+inline constexpr std::uint32_t kDefaultSourceCapacity = 1024;
+
+struct StepPlan;  // src/sim/step_plan.h
+
+// A host-triggered play window [start, end) in seconds (SoundScene::play).
+struct PlayWindow {
+  double start = 0.0;
+  double end = 0.0;  // end <= start: none
+};
+
+// What the host changes while a simulation runs: the listener, the sound
+// sources (added, moved, recoloured, removed, played, emitted once) and the
+// transforms of moving parts. Every change applies from the next step on.
+// Methods validate their arguments and return an InvalidArgument error
+// naming the problem; nothing is half-applied on error. Not thread-safe:
+// the thread that drives the simulation makes the changes.
+class SoundScene {
+ public:
+  explicit SoundScene(World world);
+
+  const World& world() const { return world_; }
+  glm::vec3 listener() const { return world_.listener; }
+  std::uint32_t source_capacity() const { return capacity_; }
+  bool has_source(std::uint32_t id) const { return id < world_.sources.size() && world_.source_active[id]; }
+
+  Result<bool> set_listener(glm::vec3 position);
+
+  // Adds a source and returns its id: the lowest free slot (ids of removed
+  // sources are reused). LimitExceeded when source_capacity() are active.
+  Result<std::uint32_t> add_source(const SourceDesc& source);
+  // Replaces everything about a source: position, colour, category, range
+  // (max_distance), loudness and emission pattern.
+  Result<bool> update_source(std::uint32_t id, const SourceDesc& source);
+  Result<bool> move_source(std::uint32_t id, glm::vec3 position);
+  // The source stops emitting; its indicators already drawn fade as usual.
+  Result<bool> remove_source(std::uint32_t id);
+
+  // Makes a source play for `duration` seconds from the next step on,
+  // whatever its emission pattern says: "this sound just started" from a
+  // game's audio engine (FMOD/Wwise callback, the engine's own mixer).
+  Result<bool> play(std::uint32_t id, double duration);
+  // A one-shot sound: a source that plays `source` for `duration` seconds
+  // from the next step on, then removes itself. Its pattern fields are
+  // ignored. Returns its id (valid until it ends).
+  Result<std::uint32_t> emit(const SourceDesc& source, double duration);
+
+  // Places moving part `instance` (Scene::instance_names) at `transform`
+  // applied to its rest pose (the vertices the scene gave): a door swings by
+  // a rotation about its hinge. The BVH is refitted before the next step.
+  Result<bool> set_instance_transform(std::uint32_t instance, const glm::mat4& transform);
+  std::uint32_t instance_count() const { return static_cast<std::uint32_t>(world_.instance_names.size()); }
+
+  // --- Used by the backends ---
+  // The plan of step `step`: playing sources and their rays. Ends one-shot
+  // sources whose sound is over. Steps are planned in increasing order.
+  void plan(std::uint64_t step, StepPlan& out);
+  // Moves pending instance transforms into the BVH: a refit, or a rebuild
+  // when refits have doubled its SAH cost. Returns what changed (nothing
+  // when nothing moved). Must not run while a step reads the BVH.
+  BvhChanges update_geometry();
+  bool geometry_pending() const { return geometry_pending_; }
+
+ private:
+  double next_step_time() const { return static_cast<double>(next_step_) * world_.config.dt; }
+  Result<bool> check_id(const char* what, std::uint32_t id) const;
+  Result<std::uint32_t> add_slot(const char* what, const SourceDesc& source);
+
+  World world_;
+  std::uint32_t capacity_ = 0;
+  std::uint32_t active_count_ = 0;
+  std::vector<PlayWindow> play_windows_;  // per source id
+  std::vector<bool> one_shot_;            // per source id: emitted, ends with its window
+  std::uint64_t next_step_ = 0;
+  bool geometry_pending_ = false;
 };
 
 enum class Backend { Cpu, Gpu };
@@ -80,7 +172,11 @@ class Simulator {
   // What runs the simulation: the device and driver for the GPU backend,
   // the thread count for the CPU backend.
   virtual std::string device_description() const = 0;
-  virtual const World& world() const = 0;
+
+  // Sources, listener and moving parts, changed between steps.
+  virtual SoundScene& scene() = 0;
+  virtual const SoundScene& scene() const = 0;
+  const World& world() const { return scene().world(); }
 
   // Runs the next step (registry, distribution, propagation). Step n runs at
   // time n * dt. Returns an error only for device failures.
@@ -89,13 +185,9 @@ class Simulator {
   // Steps run so far (== the index of the next step).
   virtual std::uint64_t steps_run() const = 0;
 
-  // Moves the listener (metres) for the following steps. Error if not finite.
-  virtual Result<bool> set_listener(glm::vec3 position) = 0;
-
-  // Makes `source_id` play for `duration` seconds from the next step on,
-  // regardless of its emission pattern. Error on an unknown id or a negative
-  // or non-finite duration.
-  virtual Result<bool> play(std::uint32_t source_id, double duration) = 0;
+  // Shorthands for scene().set_listener / scene().play.
+  Result<bool> set_listener(glm::vec3 position) { return scene().set_listener(position); }
+  Result<bool> play(std::uint32_t source_id, double duration) { return scene().play(source_id, duration); }
 
   // The indicators created by the last step, in canonical order
   // (iteration, then ray index). May read back from the device.

@@ -1,7 +1,7 @@
-// The GPU backend. Per step the host writes a small step-input block (the
-// registry's source table and the step's parameters), submits the command
-// buffer recorded once at creation, and waits on a fence; indicators stay on
-// the GPU unless a caller asks for them.
+// The GPU backend on a device it submits to itself. Per step it records the
+// StepEngine's commands (a few dozen; the step's inputs travel inside the
+// command buffer), submits and waits on a fence; indicators stay on the GPU
+// unless a caller asks for them.
 #include "gpu/gpu_simulator.h"
 
 #include <algorithm>
@@ -11,8 +11,7 @@
 #include <tuple>
 
 #include "gpu/gpu_resources.h"
-#include "gpu/step_recorder.h"
-#include "sim/host_inputs.h"
+#include "gpu/step_engine.h"
 #include "sim/step_plan.h"
 #include "vk/handle.h"
 #include "vk/vk_check.h"
@@ -36,12 +35,13 @@ class GpuSimulator final : public Simulator {
   GpuSimulator(World world, vk::Context& context, std::unique_ptr<vk::Context> owned)
       : owned_context_(std::move(owned)),
         context_(context),
-        world_(std::move(world)),
-        resources_(context_, world_),
-        host_(world_.listener, world_.sources.size()) {
+        scene_(std::move(world)),
+        engine_(context_, scene_),
+        resources_(engine_.resources()) {
     VkDevice device = context_.device();
     VkCommandPoolCreateInfo pool_info{};
     pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pool_info.queueFamilyIndex = context_.queue_family();
     VkCommandPool pool = VK_NULL_HANDLE;
     SP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
@@ -69,31 +69,20 @@ class GpuSimulator final : public Simulator {
       SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
       timestamps_ = vk::UniqueQueryPool(device, query_pool);
     }
-
-    VkCommandBufferBeginInfo begin{};
-    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    SP_VK_CHECK(vkBeginCommandBuffer(command_buffer_, &begin));
-    record_step(command_buffer_, resources_, timestamps_.get());
-    SP_VK_CHECK(vkEndCommandBuffer(command_buffer_));
   }
 
   ~GpuSimulator() override { vkDeviceWaitIdle(context_.device()); }
 
   Backend backend() const override { return Backend::Gpu; }
   std::string device_description() const override { return context_.description(); }
-  const World& world() const override { return world_; }
+  SoundScene& scene() override { return scene_; }
+  const SoundScene& scene() const override { return scene_; }
   std::uint64_t steps_run() const override { return steps_run_; }
   std::uint64_t last_step_casts() const override { return last_control_.step_casts; }
 
-  Result<bool> set_listener(glm::vec3 position) override { return host_.set_listener(position); }
-
-  Result<bool> play(std::uint32_t source_id, double duration) override {
-    return host_.play(source_id, duration, static_cast<double>(steps_run_) * world_.config.dt);
-  }
-
   Result<bool> step() override {
     return capture_errors([&] {
-      write_step_input();
+      record_one_step();
       context_.submit(command_buffer_, fence_.get());
       VkFence fence = fence_.get();
       VkResult waited = vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kStepTimeoutNs);
@@ -126,8 +115,8 @@ class GpuSimulator final : public Simulator {
       if (steps_run_ == 0) return live;
       const std::uint64_t now = steps_run_ - 1;
       for (const Indicator& ind : stored) {
-        double age = static_cast<double>(now - std::min<std::uint64_t>(now, ind.step)) * world_.config.dt;
-        if (age < world_.config.indicator_lifetime) live.push_back(ind);
+        double age = static_cast<double>(now - std::min<std::uint64_t>(now, ind.step)) * scene_.world().config.dt;
+        if (age < scene_.world().config.indicator_lifetime) live.push_back(ind);
       }
       sort_canonically(live);
       return live;
@@ -136,7 +125,7 @@ class GpuSimulator final : public Simulator {
 
   Result<SimulationStats> stats() override {
     return capture_errors([&] {
-      const std::size_t layers = world_.layer_names.size();
+      const std::size_t layers = scene_.world().layer_names.size();
       std::vector<std::uint32_t> counters(layers * SP_COUNTERS_PER_LAYER * 3);
       if (!counters.empty())
         vk::download(context_, resources_.counters, counters.data(), counters.size() * sizeof(std::uint32_t));
@@ -159,15 +148,7 @@ class GpuSimulator final : public Simulator {
     }, ErrorCode::Vulkan);
   }
 
-  IndicatorView view() {
-    IndicatorView v;
-    v.context = &context_;
-    v.ring = resources_.ring.get();
-    v.ring_capacity = resources_.ring_capacity;
-    v.draw_args = resources_.control.get();
-    v.draw_args_offset = offsetof(shader::Control, draw_vertex_count);
-    return v;
-  }
+  IndicatorView view() { return engine_.view(); }
 
   std::optional<double> last_gpu_ms() const override {
     if (!timestamps_) return std::nullopt;
@@ -184,18 +165,17 @@ class GpuSimulator final : public Simulator {
     return context_.queue_family() < count && families[context_.queue_family()].timestampValidBits > 0;
   }
 
-  void write_step_input() {
-    StepPlan plan = host_.plan(world_, steps_run_);
-    shader::StepInput input{};
-    input.params = make_sim_params(world_.config, steps_run_);
-    input.total_rays = plan.total_rays;
-    input.source_count = static_cast<std::uint32_t>(plan.sources.size());
-    input.ring_capacity = resources_.ring_capacity;
-    input.layer_count = resources_.layer_count;
-    auto* mapped = static_cast<std::byte*>(resources_.step_input.mapped());
-    std::memcpy(mapped, &input, sizeof input);
-    if (!plan.sources.empty())
-      std::memcpy(mapped + sizeof input, plan.sources.data(), plan.sources.size() * sizeof(shader::StepSource));
+  void record_one_step() {
+    SP_VK_CHECK(vkResetCommandBuffer(command_buffer_, 0));
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    SP_VK_CHECK(vkBeginCommandBuffer(command_buffer_, &begin));
+    RecordOptions options;
+    options.readback_control = true;
+    options.timestamps = timestamps_.get();
+    engine_.record(command_buffer_, scene_, steps_run_, 1, options);
+    SP_VK_CHECK(vkEndCommandBuffer(command_buffer_));
   }
 
   void read_timestamps() {
@@ -208,9 +188,9 @@ class GpuSimulator final : public Simulator {
 
   std::unique_ptr<vk::Context> owned_context_;  // set when the simulator made its own
   vk::Context& context_;
-  World world_;
-  GpuResources resources_;
-  HostInputs host_;
+  SoundScene scene_;
+  StepEngine engine_;
+  GpuResources& resources_;
   vk::UniqueCommandPool command_pool_;
   VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;  // freed with the pool
   vk::UniqueFence fence_;

@@ -51,6 +51,7 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
   std::vector<double> weights;
   for (std::uint32_t id = 0; id < world.sources.size(); ++id) {
     const SourceDesc& source = world.sources[id];
+    if (!world.source_active[id]) continue;
     const PlayWindow& window = play_windows[id];
     bool playing = source_pattern_plays(source, t) || (t >= window.start && t < window.end);
     if (!playing) continue;

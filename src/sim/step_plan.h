@@ -11,12 +11,6 @@
 
 namespace sp {
 
-// A host-triggered play window [start, end) in seconds (Simulator::play).
-struct PlayWindow {
-  double start = 0.0;
-  double end = 0.0;
-};
-
 struct StepPlan {
   std::vector<shader::StepSource> sources;  // active sources, ascending id
   std::uint32_t total_rays = 0;             // sum of ray_count
@@ -25,8 +19,9 @@ struct StepPlan {
 // Is the source playing at time t by its emission pattern?
 bool source_pattern_plays(const SourceDesc& source, double t);
 
-// Active sources of step `step` (time step * dt) and their ray counts.
-// `play_windows` has one entry per source (end <= start: none).
+// Playing sources of step `step` (time step * dt) within reach of the
+// listener, and their ray counts. Removed sources (World::source_active)
+// never play. `play_windows` has one entry per source (end <= start: none).
 StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
                    const std::vector<PlayWindow>& play_windows);
 

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "sim/source_checks.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -22,7 +23,20 @@ void check_scene(const Scene& scene) {
            " but there are only " + std::to_string(scene.layer_names.size()) + " layers");
   for (std::size_t i = 0; i < scene.vertices.size(); ++i)
     if (!finite(scene.vertices[i])) fail("vertex " + std::to_string(i) + " is not finite");
+  if (!scene.triangle_instances.empty()) {
+    if (scene.triangle_instances.size() != scene.triangle_count())
+      fail("triangle_instances (" + std::to_string(scene.triangle_instances.size()) +
+           ") must be empty or one per triangle (" + std::to_string(scene.triangle_count()) + ")");
+    for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
+      const std::uint32_t instance = scene.triangle_instances[i];
+      if (instance != kStaticInstance && instance >= scene.instance_names.size())
+        fail("triangle " + std::to_string(i) + " belongs to instance " + std::to_string(instance) +
+             " but there are only " + std::to_string(scene.instance_names.size()) + " instances");
+    }
+  }
 }
+
+}  // namespace
 
 void check_source(const SourceDesc& s, std::size_t id) {
   auto fail = [&](const std::string& what) {
@@ -36,6 +50,8 @@ void check_source(const SourceDesc& s, std::size_t id) {
   if (!(s.duration >= 0.0) || !std::isfinite(s.duration)) fail("duration must be finite and >= 0");
   if (!(s.phase >= 0.0) || !std::isfinite(s.phase)) fail("phase must be finite and >= 0");
 }
+
+namespace {
 
 // Guards API users who fill Config by hand; parse_config checks the same.
 void check_config(const Config& c) {
@@ -75,6 +91,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     world.sources = scene.sources;
     world.sources.insert(world.sources.end(), config.sources.begin(), config.sources.end());
     for (std::size_t id = 0; id < world.sources.size(); ++id) check_source(world.sources[id], id);
+    world.source_active.assign(world.sources.size(), true);
     if (config.listener_position) {
       world.listener = *config.listener_position;
     } else if (scene.camera) {
@@ -88,6 +105,14 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
     for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
     world.bvh = build_bvh(scene.vertices, scene.triangle_layers, bvh_settings);
+    if (!scene.instance_names.empty()) {
+      world.instance_names = scene.instance_names;
+      world.instance_transforms.assign(scene.instance_names.size(), glm::mat4(1.0f));
+      world.rest_vertices = scene.vertices;
+      world.triangle_instances = scene.triangle_instances;
+      if (world.triangle_instances.empty()) world.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+      world.triangle_layers = scene.triangle_layers;
+    }
     return world;
   });
 }

@@ -1,0 +1,45 @@
+// One step of the CPU backend on a thread pool, given its plan: the part of
+// the CPU simulator that can run on a worker thread while the host goes on
+// (the visualizer runs it one step ahead of the frame it draws).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sim/cpu_tracer.h"
+#include "sim/step_plan.h"
+#include "sim/thread_pool.h"
+#include "soundpaint/simulation.h"
+
+namespace sp {
+
+struct CpuStepOutput {
+  std::vector<Indicator> indicators;  // canonical order: iteration, then ray index
+  TraceCounters counters;             // summed over the workers
+};
+
+class CpuStepRunner {
+ public:
+  // `threads` as CpuSettings::threads.
+  CpuStepRunner(unsigned threads, std::size_t layer_count);
+
+  unsigned threads() const { return pool_.size(); }
+
+  // Casts every ray of `plan` through `bvh`. Results are independent of the
+  // thread count: every random number is keyed by (seed, step, ray,
+  // interaction) and indicators are merged in canonical order. `bvh`,
+  // `layers` and `plan` must not change during the call.
+  void run(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, const StepPlan& plan,
+           const shader::SimParams& params, CpuStepOutput& out);
+
+ private:
+  void merge_in_canonical_order(std::size_t chunks, std::vector<Indicator>& out) const;
+
+  ThreadPool pool_;
+  std::size_t layer_count_;
+  std::vector<TraceCounters> worker_counters_;
+  std::vector<std::vector<Indicator>> chunk_indicators_;
+};
+
+}  // namespace sp
