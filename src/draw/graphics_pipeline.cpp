@@ -16,9 +16,9 @@ vk::UniqueShaderModule make_module(const vk::Context& context, std::span<const s
   info.codeSize = spirv.size_bytes();
   info.pCode = spirv.data();
   VkShaderModule module = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateShaderModule(context.device(), &info, nullptr, &module));
+  SP_VK_CHECK(vkCreateShaderModule(context.device(), &info, context.allocator(), &module));
   context.set_name(VK_OBJECT_TYPE_SHADER_MODULE, module, name.c_str());
-  return vk::UniqueShaderModule(context.device(), module);
+  return vk::UniqueShaderModule(context.device(), module, context.allocator());
 }
 
 }  // namespace
@@ -36,8 +36,8 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   layout_info.pushConstantRangeCount = desc.push_constant_bytes > 0 ? 1 : 0;
   layout_info.pPushConstantRanges = &push_range;
   VkPipelineLayout raw_layout = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, nullptr, &raw_layout));
-  layout_ = vk::UniquePipelineLayout(device, raw_layout);
+  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, context.allocator(), &raw_layout));
+  layout_ = vk::UniquePipelineLayout(device, raw_layout, context.allocator());
   context.set_name(VK_OBJECT_TYPE_PIPELINE_LAYOUT, raw_layout, (label + " layout").c_str());
 
   // Only needed until the pipeline exists.
@@ -71,13 +71,14 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{};
   multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  multisample.rasterizationSamples = desc.samples;
   VkPipelineDepthStencilStateCreateInfo depth{};
   depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = desc.depth_write ? VK_TRUE : VK_FALSE;
-  // LESS_OR_EQUAL: a lifted indicator exactly level with a surface still shows.
-  depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
+  const bool has_depth = desc.depth_format != VK_FORMAT_UNDEFINED;
+  depth.depthTestEnable = has_depth ? VK_TRUE : VK_FALSE;
+  depth.depthWriteEnable = has_depth && desc.depth_write ? VK_TRUE : VK_FALSE;
+  // OR_EQUAL: a lifted indicator exactly level with a surface still shows.
+  depth.depthCompareOp = desc.depth_compare;
 
   VkPipelineColorBlendAttachmentState attachment{};
   attachment.colorWriteMask =
@@ -109,6 +110,7 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   rendering.colorAttachmentCount = 1;
   rendering.pColorAttachmentFormats = &desc.color_format;
   rendering.depthAttachmentFormat = desc.depth_format;
+  rendering.stencilAttachmentFormat = desc.stencil_format;
 
   VkGraphicsPipelineCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
@@ -125,8 +127,8 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   info.pDynamicState = &dynamic;
   info.layout = raw_layout;
   VkPipeline raw_pipeline = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &raw_pipeline));
-  pipeline_ = vk::UniquePipeline(device, raw_pipeline);
+  SP_VK_CHECK(vkCreateGraphicsPipelines(device, context.pipeline_cache(), 1, &info, context.allocator(), &raw_pipeline));
+  pipeline_ = vk::UniquePipeline(device, raw_pipeline, context.allocator());
   context.set_name(VK_OBJECT_TYPE_PIPELINE, raw_pipeline, label.c_str());
 }
 

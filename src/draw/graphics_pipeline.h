@@ -23,9 +23,12 @@ struct GraphicsPipelineDesc {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;  // set 0
   std::uint32_t push_constant_bytes = 0;              // one range, vertex + fragment stages
   VkFormat color_format = VK_FORMAT_UNDEFINED;
-  VkFormat depth_format = VK_FORMAT_UNDEFINED;
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;   // UNDEFINED: no depth attachment, no depth test
+  VkFormat stencil_format = VK_FORMAT_UNDEFINED; // the rendering's stencil attachment, if any
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   Blend blend = Blend::Opaque;
-  bool depth_write = true;                 // depth test (LESS_OR_EQUAL) is always on
+  bool depth_write = true;
+  VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // GREATER_OR_EQUAL for reversed depth
   const char* name = "graphics pipeline";  // debug name
 };
 

@@ -8,14 +8,20 @@
 namespace sp::draw {
 
 IndicatorPass::IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format)
+    : IndicatorPass(context, IndicatorTarget{color_format, depth_format}) {}
+
+IndicatorPass::IndicatorPass(const vk::Context& context, const IndicatorTarget& target)
     : device_(context.device()), bindings_(context, 1, "indicator pass bindings") {
   GraphicsPipelineDesc desc;
   desc.vertex_spirv = sp_spirv_indicator_vert;
   desc.fragment_spirv = sp_spirv_indicator_frag;
   desc.set_layout = bindings_.layout();
   desc.push_constant_bytes = sizeof(shader::IndicatorPush);
-  desc.color_format = color_format;
-  desc.depth_format = depth_format;
+  desc.color_format = target.color_format;
+  desc.depth_format = target.depth_format;
+  desc.stencil_format = target.stencil_format;
+  desc.samples = target.samples;
+  desc.depth_compare = target.depth_compare;
   // Tested against the scene's depth but not written: overlapping spots
   // blend instead of hiding one another.
   desc.blend = Blend::Alpha;
@@ -42,9 +48,14 @@ void IndicatorPass::bind(const gpu::IndicatorView& indicators) {
 
 void IndicatorPass::record(VkCommandBuffer cmd, const ViewCamera& camera, const gpu::IndicatorView& indicators,
                            const IndicatorClock& clock) const {
+  record(cmd, camera.view_projection(), camera.eye, indicators, clock);
+}
+
+void IndicatorPass::record(VkCommandBuffer cmd, const glm::mat4& view_projection, glm::vec3 eye,
+                           const gpu::IndicatorView& indicators, const IndicatorClock& clock) const {
   shader::IndicatorPush push{};
-  push.view_proj = camera.view_projection();
-  push.eye = camera.eye;
+  push.view_proj = view_projection;
+  push.eye = eye;
   push.current_step = clock.current_step;
   push.dt = clock.dt;
   push.lifetime = clock.lifetime;

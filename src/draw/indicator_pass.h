@@ -23,10 +23,20 @@ struct IndicatorClock {
   float lifetime = 1.0f;           // indicator_lifetime, seconds (> 0)
 };
 
+// The attachments of the rendering the pass draws into.
+struct IndicatorTarget {
+  VkFormat color_format = VK_FORMAT_UNDEFINED;
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;    // UNDEFINED: none, no depth test
+  VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if any
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
+};
+
 class IndicatorPass {
  public:
   // Throws sp::Exception.
   IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format);
+  IndicatorPass(const vk::Context& context, const IndicatorTarget& target);
 
   // Points the pass at `indicators`' ring. Call before recording each frame
   // that draws them, and never while a frame using the pass is pending (a
@@ -38,6 +48,9 @@ class IndicatorPass {
   // draw-indirect stages.
   void record(VkCommandBuffer cmd, const ViewCamera& camera, const gpu::IndicatorView& indicators,
               const IndicatorClock& clock) const;
+  // The same with the host's matrices; `eye` is the camera position.
+  void record(VkCommandBuffer cmd, const glm::mat4& view_projection, glm::vec3 eye,
+              const gpu::IndicatorView& indicators, const IndicatorClock& clock) const;
 
  private:
   VkDevice device_ = VK_NULL_HANDLE;

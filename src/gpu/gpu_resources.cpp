@@ -1,6 +1,7 @@
 #include "gpu/gpu_resources.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "emit.comp.spv.h"
@@ -21,16 +22,36 @@ VkDeviceSize bytes(std::uint64_t count) {
   return static_cast<VkDeviceSize>(std::max<std::uint64_t>(count, 1) * sizeof(T));
 }
 
-template <class T>
-vk::Buffer upload_array(vk::Context& context, const std::vector<T>& data, const char* name) {
-  vk::Buffer buffer(context, bytes<T>(data.size()), kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, name);
-  if (!data.empty()) vk::upload(context, buffer, data.data(), data.size() * sizeof(T));
-  return buffer;
-}
+// Lays out the initial contents of several buffers in one staging buffer.
+class StagingPlan {
+ public:
+  template <class T>
+  void add(const vk::Buffer& destination, const std::vector<T>& data) {
+    parts_.push_back({&destination, size_, data.size() * sizeof(T)});
+    sources_.push_back(data.data());
+    size_ += (data.size() * sizeof(T) + 15) / 16 * 16;
+  }
+
+  void fill(vk::Context& context, GpuResources& r) {
+    r.initial_staging = vk::Buffer(context, std::max<VkDeviceSize>(size_, 16), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                   vk::MemoryUsage::HostVisible, "initial contents staging");
+    for (std::size_t i = 0; i < parts_.size(); ++i) {
+      if (parts_[i].size == 0) continue;
+      std::memcpy(static_cast<std::byte*>(r.initial_staging.mapped()) + parts_[i].staging_offset, sources_[i],
+                  parts_[i].size);
+      r.initial_copies.push_back(parts_[i]);
+    }
+  }
+
+ private:
+  std::vector<GpuResources::InitialCopy> parts_;
+  std::vector<const void*> sources_;
+  VkDeviceSize size_ = 0;
+};
 
 }  // namespace
 
-GpuResources::GpuResources(vk::Context& context, const World& world) {
+GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources) {
   const Config& config = world.config;
   max_rays = std::max<std::uint32_t>(1, config.ray_budget);
   // A ray casts at most twice per interaction (forward + backcast) plus a
@@ -45,13 +66,21 @@ GpuResources::GpuResources(vk::Context& context, const World& world) {
                                                   " needs more workgroups than the device's limit of " +
                                                   std::to_string(max_groups));
 
-  nodes = upload_array(context, world.bvh.nodes, "bvh nodes");
-  triangles = upload_array(context, world.bvh.triangles, "bvh triangles");
-  layers = upload_array(context, make_layer_table(world), "layer acoustics");
-
-  step_input = vk::Buffer(context,
-                          sizeof(shader::StepInput) + bytes<shader::StepSource>(world.sources.size()),
-                          kStorage, vk::MemoryUsage::HostVisible, "step input");
+  // Moving parts may force a rebuild, whose node count can differ; a binary
+  // tree over n triangles never has more than 2n - 1 nodes.
+  const std::size_t triangle_count = world.bvh.triangles.size();
+  node_capacity = static_cast<std::uint32_t>(
+      world.instance_names.empty() ? world.bvh.nodes.size() : std::max(world.bvh.nodes.size(), 2 * triangle_count - 1));
+  source_capacity = sources;
+  const std::vector<shader::LayerAcoustics> layer_table = make_layer_table(world);
+  nodes = vk::Buffer(context, bytes<shader::BvhNode>(node_capacity), kStorage | kTransfer, vk::MemoryUsage::DeviceLocal,
+                     "bvh nodes");
+  triangles = vk::Buffer(context, bytes<shader::BvhTriangle>(triangle_count), kStorage | kTransfer,
+                         vk::MemoryUsage::DeviceLocal, "bvh triangles");
+  layers = vk::Buffer(context, bytes<shader::LayerAcoustics>(layer_table.size()), kStorage | kTransfer,
+                      vk::MemoryUsage::DeviceLocal, "layer acoustics");
+  step_input = vk::Buffer(context, sizeof(shader::StepInput) + bytes<shader::StepSource>(source_capacity),
+                          kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "step input");
   rays = vk::Buffer(context, bytes<shader::RayState>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "rays");
   hits = vk::Buffer(context, bytes<shader::HitInfo>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "hits");
   queues = vk::Buffer(context, bytes<std::uint32_t>(2ull * max_rays), kStorage, vk::MemoryUsage::DeviceLocal,
@@ -68,11 +97,16 @@ GpuResources::GpuResources(vk::Context& context, const World& world) {
   control_readback = vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback,
                                 "control readback");
 
-  shader::Control initial{};
-  initial.draw_vertex_count = 6;  // one quad per indicator instance, as two triangles
-  vk::upload(context, control, &initial, sizeof initial);
+  std::vector<shader::Control> initial(1);
+  initial[0].draw_vertex_count = 6;  // one quad per indicator instance, as two triangles
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
-  if (!zeros.empty()) vk::upload(context, counters, zeros.data(), zeros.size() * sizeof(std::uint32_t));
+  StagingPlan staging;
+  staging.add(nodes, world.bvh.nodes);
+  staging.add(triangles, world.bvh.triangles);
+  staging.add(layers, layer_table);
+  staging.add(control, initial);
+  staging.add(counters, zeros);
+  staging.fill(context, *this);
 
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
   const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes, &triangles, &layers, &step_input, &rays,   &hits,

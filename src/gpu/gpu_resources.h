@@ -1,9 +1,12 @@
-// The GPU backend's device objects: scene buffers (uploaded once), per-budget
-// ray buffers, the indicator ring and capture list, counters, the shared
-// descriptor set and the four kernels.
+// The GPU backend's device objects: scene buffers, per-budget ray buffers,
+// the indicator ring and capture list, counters, the shared descriptor set
+// and the four kernels. Creating them submits nothing (a host's device may
+// be borrowed): initial contents wait in a staging buffer for the first
+// recorded step (StepEngine) to copy them.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "soundpaint/simulation.h"
 #include "sp_gpu_types.h"
@@ -23,13 +26,18 @@ struct Kernels {
 struct GpuResources {
   // Sizes all buffers for `world`; throws sp::Exception (LimitExceeded when
   // a buffer would exceed the device's storage-buffer range).
-  GpuResources(vk::Context& context, const World& world);
+  GpuResources(vk::Context& context, const World& world, std::uint32_t source_capacity);
+  // initial_copies points into this object.
+  GpuResources(const GpuResources&) = delete;
+  GpuResources& operator=(const GpuResources&) = delete;
 
   std::uint32_t max_rays = 0;           // rays per step the buffers hold (== ray_budget, at least 1)
   std::uint32_t capture_capacity = 0;   // indicators one step can create, worst case
   std::uint32_t ring_capacity = 0;      // max_indicators
   std::uint32_t layer_count = 0;
   std::uint32_t iterations = 0;         // wavefront iterations per step
+  std::uint32_t node_capacity = 0;      // BVH nodes the buffer holds (a rebuild may need more than the first build)
+  std::uint32_t source_capacity = 0;    // entries of the step input's source table
 
   vk::Buffer nodes, triangles, layers;  // scene, read-only
   vk::Buffer step_input;                // host-written each step
@@ -38,6 +46,16 @@ struct GpuResources {
   vk::Buffer ring, capture;             // indicators
   vk::Buffer counters;                  // per-layer counters
   vk::Buffer control_readback;          // copy of control after each step
+
+  // Initial contents, copied by the first recorded step: where each part
+  // lies in `initial_staging`.
+  vk::Buffer initial_staging;
+  struct InitialCopy {
+    const vk::Buffer* destination;
+    VkDeviceSize staging_offset;
+    VkDeviceSize size;
+  };
+  std::vector<InitialCopy> initial_copies;
   vk::StorageBindings bindings;
   Kernels kernels;
 };

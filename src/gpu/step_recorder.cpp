@@ -16,16 +16,7 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
 
 }  // namespace
 
-void record_step(VkCommandBuffer cmd, const GpuResources& r, VkQueryPool timestamps) {
-  if (timestamps) {
-    vkCmdResetQueryPool(cmd, timestamps, 0, 2);
-    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, timestamps, 0);
-  }
-  // The previous step's readback copy and the host's step-input write must
-  // land before this step's kernels touch control and read the inputs.
-  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
   VkDescriptorSet set = r.bindings.set();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernels.emit.layout(), 0, 1, &set, 0, nullptr);
 
@@ -51,16 +42,6 @@ void record_step(VkCommandBuffer cmd, const GpuResources& r, VkQueryPool timesta
     // Prepare's group count is the next iteration's indirect argument.
     vk::compute_to_compute(cmd);
   }
-
-  // The step's totals, as the last prepare left them, go to the host.
-  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-  VkBufferCopy region{0, 0, sizeof(shader::Control)};
-  vkCmdCopyBuffer(cmd, r.control.get(), r.control_readback.get(), 1, &region);
-  // Make the copy visible to host reads after the fence.
-  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                     VK_ACCESS_2_HOST_READ_BIT);
-  if (timestamps) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, timestamps, 1);
 }
 
 }  // namespace sp::gpu

@@ -1,7 +1,7 @@
-// Records the command buffer of one step: emit, then per wavefront iteration
+// Records the dispatches of one step: emit, then per wavefront iteration
 // trace -> resolve -> prepare, with indirect dispatches sized on the GPU.
-// Nothing in it changes between steps (per-step data lives in the host-written
-// step input), so it is recorded once and submitted every step.
+// Nothing in it depends on the step (per-step data lives in the step input
+// buffer), so the same sequence serves every step.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -10,7 +10,8 @@
 
 namespace sp::gpu {
 
-// `timestamps` holds 2 queries (start, end) or is VK_NULL_HANDLE.
-void record_step(VkCommandBuffer cmd, const GpuResources& resources, VkQueryPool timestamps);
+// The caller has made the step input visible to compute reads and ordered
+// earlier accesses to the ray, queue and control buffers before this.
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources);
 
 }  // namespace sp::gpu

@@ -1,7 +1,10 @@
 #include "vk/buffer.h"
 
+#include <algorithm>
+#include <stdexcept>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "soundpaint/result.h"
 #include "vk/barriers.h"
@@ -58,10 +61,19 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usa
   buffer_info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
   buffer_info.size = size;
   buffer_info.usage = usage;
-  buffer_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  // A host running the simulation on an async compute queue draws from the
+  // same buffers on its graphics queue: shared, no ownership transfers.
+  const std::vector<std::uint32_t>& families = context.sharing_families();
+  if (families.size() > 1) {
+    buffer_info.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    buffer_info.queueFamilyIndexCount = static_cast<std::uint32_t>(families.size());
+    buffer_info.pQueueFamilyIndices = families.data();
+  } else {
+    buffer_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  }
   VkBuffer raw_buffer = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateBuffer(device, &buffer_info, nullptr, &raw_buffer));
-  buffer_ = UniqueBuffer(device, raw_buffer);
+  SP_VK_CHECK(vkCreateBuffer(device, &buffer_info, context.allocator(), &raw_buffer));
+  buffer_ = UniqueBuffer(device, raw_buffer, context.allocator());
   context.set_name(VK_OBJECT_TYPE_BUFFER, raw_buffer, label.c_str());
 
   VkMemoryRequirements requirements{};
@@ -82,7 +94,7 @@ UniqueMemory allocate_memory(const Context& context, const VkMemoryRequirements&
   allocate.allocationSize = requirements.size;
   allocate.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, required, preferred);
   VkDeviceMemory raw_memory = VK_NULL_HANDLE;
-  const VkResult result = vkAllocateMemory(context.device(), &allocate, nullptr, &raw_memory);
+  const VkResult result = vkAllocateMemory(context.device(), &allocate, context.allocator(), &raw_memory);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
     throw Exception(
         Error{ErrorCode::LimitExceeded,
@@ -91,7 +103,7 @@ UniqueMemory allocate_memory(const Context& context, const VkMemoryRequirements&
   }
   SP_VK_CHECK(result);
   context.set_name(VK_OBJECT_TYPE_DEVICE_MEMORY, raw_memory, (name + " memory").c_str());
-  return UniqueMemory(context.device(), raw_memory);
+  return UniqueMemory(context.device(), raw_memory, context.allocator());
 }
 
 // The host <-> device copies below, with the hazards each barrier resolves.
@@ -147,6 +159,20 @@ void download(Context& context, const Buffer& source, void* out, VkDeviceSize si
                    VK_ACCESS_2_HOST_READ_BIT);
   });
   std::memcpy(out, staging.mapped(), size);
+}
+
+void record_update(VkCommandBuffer cmd, const Buffer& destination, VkDeviceSize offset, const void* bytes,
+                   VkDeviceSize size) {
+  check_range(destination, size, offset, "record_update");
+  if (offset % 4 != 0 || size % 4 != 0)
+    throw std::logic_error("record_update: offset and size must be multiples of 4");
+  // vkCmdUpdateBuffer takes at most 65536 bytes per call.
+  constexpr VkDeviceSize kMaxUpdate = 65536;
+  const auto* data = static_cast<const std::byte*>(bytes);
+  for (VkDeviceSize done = 0; done < size; done += kMaxUpdate) {
+    const VkDeviceSize chunk = std::min(kMaxUpdate, size - done);
+    vkCmdUpdateBuffer(cmd, destination.get(), offset + done, chunk, data + done);
+  }
 }
 
 }  // namespace sp::vk

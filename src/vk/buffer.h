@@ -74,4 +74,13 @@ void upload(Context& context, const Buffer& destination, const void* bytes, VkDe
 // source needs VK_BUFFER_USAGE_TRANSFER_SRC_BIT. Throws like upload().
 void download(Context& context, const Buffer& source, void* out, VkDeviceSize size, VkDeviceSize offset = 0);
 
+// Records vkCmdUpdateBuffer calls writing `size` bytes at `offset`: the
+// bytes are copied into the command buffer now, so the caller may reuse
+// them at once and command buffers of several frames in flight never share
+// a staging area. For small or occasional data (a step's inputs, a moved
+// door's BVH entries). Outside a render pass; offset and size multiples of
+// 4; the caller orders it against other accesses with barriers.
+void record_update(VkCommandBuffer cmd, const Buffer& destination, VkDeviceSize offset, const void* bytes,
+                   VkDeviceSize size);
+
 }  // namespace sp::vk

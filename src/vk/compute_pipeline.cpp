@@ -27,8 +27,8 @@ StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_c
   layout_info.bindingCount = binding_count;
   layout_info.pBindings = bindings.data();
   VkDescriptorSetLayout raw_layout = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &raw_layout));
-  layout_ = UniqueDescriptorSetLayout(device, raw_layout);
+  SP_VK_CHECK(vkCreateDescriptorSetLayout(device, &layout_info, context.allocator(), &raw_layout));
+  layout_ = UniqueDescriptorSetLayout(device, raw_layout, context.allocator());
   context.set_name(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, raw_layout, (label + " layout").c_str());
 
   const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count};
@@ -38,8 +38,8 @@ StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_c
   pool_info.poolSizeCount = 1;
   pool_info.pPoolSizes = &pool_size;
   VkDescriptorPool raw_pool = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &raw_pool));
-  pool_ = UniqueDescriptorPool(device, raw_pool);
+  SP_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, context.allocator(), &raw_pool));
+  pool_ = UniqueDescriptorPool(device, raw_pool, context.allocator());
   context.set_name(VK_OBJECT_TYPE_DESCRIPTOR_POOL, raw_pool, (label + " pool").c_str());
 
   VkDescriptorSetAllocateInfo set_info{};
@@ -78,8 +78,8 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const std::ui
   layout_info.pushConstantRangeCount = push_constant_bytes > 0 ? 1 : 0;
   layout_info.pPushConstantRanges = &push_range;
   VkPipelineLayout raw_layout = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, nullptr, &raw_layout));
-  layout_ = UniquePipelineLayout(device, raw_layout);
+  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, context.allocator(), &raw_layout));
+  layout_ = UniquePipelineLayout(device, raw_layout, context.allocator());
   context.set_name(VK_OBJECT_TYPE_PIPELINE_LAYOUT, raw_layout, (label + " layout").c_str());
 
   VkShaderModuleCreateInfo module_info{};
@@ -87,8 +87,8 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const std::ui
   module_info.codeSize = spirv.size_bytes();
   module_info.pCode = spirv.data();
   VkShaderModule raw_module = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateShaderModule(device, &module_info, nullptr, &raw_module));
-  const UniqueShaderModule shader(device, raw_module);  // not needed once the pipeline exists
+  SP_VK_CHECK(vkCreateShaderModule(device, &module_info, context.allocator(), &raw_module));
+  const UniqueShaderModule shader(device, raw_module, context.allocator());  // not needed once the pipeline exists
   context.set_name(VK_OBJECT_TYPE_SHADER_MODULE, raw_module, label.c_str());
 
   VkComputePipelineCreateInfo pipeline_info{};
@@ -99,8 +99,8 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const std::ui
   pipeline_info.stage.pName = "main";
   pipeline_info.layout = raw_layout;
   VkPipeline raw_pipeline = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &raw_pipeline));
-  pipeline_ = UniquePipeline(device, raw_pipeline);
+  SP_VK_CHECK(vkCreateComputePipelines(device, context.pipeline_cache(), 1, &pipeline_info, context.allocator(), &raw_pipeline));
+  pipeline_ = UniquePipeline(device, raw_pipeline, context.allocator());
   context.set_name(VK_OBJECT_TYPE_PIPELINE, raw_pipeline, label.c_str());
 }
 

@@ -1,6 +1,8 @@
 #include "vk/context.h"
 
 #include <cstdlib>
+#include <stdexcept>
+#include <algorithm>
 #include <cstring>
 #include <string_view>
 
@@ -120,14 +122,50 @@ struct DeviceFeatures {
   DeviceFeatures& operator=(const DeviceFeatures&) = delete;
 };
 
-void require_features(VkPhysicalDevice device, const char* device_name) {
+// The Vulkan 1.3 features every shader and barrier of soundpaint relies on.
+std::string missing_core_features(const VkPhysicalDeviceVulkan13Features& features) {
+  std::string missing;
+  if (!features.synchronization2) missing += " synchronization2";
+  if (!features.dynamicRendering) missing += " dynamicRendering";
+  if (!features.maintenance4) missing += " maintenance4";
+  return missing;
+}
+
+// What the host enabled, read from the pNext chain it gave vkCreateDevice:
+// VkPhysicalDeviceVulkan13Features or the per-feature structs it replaces.
+// Returns the missing ones; a chain naming none of them misses all three.
+std::string missing_enabled_features(const void* chain) {
+  VkPhysicalDeviceVulkan13Features enabled{};
+  for (auto* node = static_cast<const VkBaseInStructure*>(chain); node != nullptr; node = node->pNext) {
+    switch (node->sType) {
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+        const auto* v13 = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(node);
+        enabled.synchronization2 |= v13->synchronization2;
+        enabled.dynamicRendering |= v13->dynamicRendering;
+        enabled.maintenance4 |= v13->maintenance4;
+        break;
+      }
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+        enabled.synchronization2 |= reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(node)->synchronization2;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+        enabled.dynamicRendering |= reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(node)->dynamicRendering;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
+        enabled.maintenance4 |= reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(node)->maintenance4;
+        break;
+      default:
+        break;
+    }
+  }
+  return missing_core_features(enabled);
+}
+
+void require_features(VkPhysicalDevice device, const char* device_name, bool host_query_reset = true) {
   DeviceFeatures supported;
   vkGetPhysicalDeviceFeatures2(device, &supported.features);
-  std::string missing;
-  if (!supported.vulkan13.synchronization2) missing += " synchronization2";
-  if (!supported.vulkan13.dynamicRendering) missing += " dynamicRendering";
-  if (!supported.vulkan13.maintenance4) missing += " maintenance4";
-  if (!supported.vulkan12.hostQueryReset) missing += " hostQueryReset";
+  std::string missing = missing_core_features(supported.vulkan13);
+  if (host_query_reset && !supported.vulkan12.hostQueryReset) missing += " hostQueryReset";
   if (!missing.empty()) {
     throw Exception(ErrorCode::Vulkan, std::string(device_name) + " lacks required Vulkan features:" + missing);
   }
@@ -168,20 +206,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         context->physical_device_ = choice.device;
         context->queue_family_ = choice.queue_family;
 
-        VkPhysicalDeviceDriverProperties driver{};
-        driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
-        VkPhysicalDeviceSubgroupProperties subgroup{};
-        subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
-        subgroup.pNext = &driver;
-        VkPhysicalDeviceProperties2 properties{};
-        properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-        properties.pNext = &subgroup;
-        vkGetPhysicalDeviceProperties2(choice.device, &properties);
-        context->properties_ = properties.properties;
-        context->subgroup_size_ = subgroup.subgroupSize;
-        context->driver_info_ = std::string(driver.driverName) + " " + driver.driverInfo;
-        vkGetPhysicalDeviceMemoryProperties(choice.device, &context->memory_properties_);
-
+        context->sharing_families_ = {choice.queue_family};
+        context->query_device_properties();
         require_features(choice.device, context->properties_.deviceName);
         DeviceFeatures enabled;
         enabled.vulkan13.synchronization2 = VK_TRUE;
@@ -216,7 +242,74 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
       ErrorCode::Vulkan);
 }
 
+void Context::query_device_properties() {
+  VkPhysicalDeviceDriverProperties driver{};
+  driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
+  VkPhysicalDeviceSubgroupProperties subgroup{};
+  subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+  subgroup.pNext = &driver;
+  VkPhysicalDeviceProperties2 properties{};
+  properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+  properties.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(physical_device_, &properties);
+  properties_ = properties.properties;
+  subgroup_size_ = subgroup.subgroupSize;
+  driver_info_ = std::string(driver.driverName) + " " + driver.driverInfo;
+  vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
+}
+
+Result<std::unique_ptr<Context>> Context::borrow(const BorrowedDevice& host) {
+  return capture_errors(
+      [&]() -> std::unique_ptr<Context> {
+        if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE)
+          throw Exception(ErrorCode::InvalidArgument, "the host's VkInstance, VkPhysicalDevice and VkDevice must be set");
+        if (host.queue_families.empty())
+          throw Exception(ErrorCode::InvalidArgument, "the host's queue family index must be set");
+        std::unique_ptr<Context> context(new Context());
+        context->borrowed_ = true;
+        context->instance_ = host.instance;
+        context->physical_device_ = host.physical_device;
+        context->device_ = host.device;
+        context->allocator_ = host.allocator;
+        context->pipeline_cache_ = host.pipeline_cache;
+        context->query_device_properties();
+        const std::string name = context->properties_.deviceName;
+        if (context->properties_.apiVersion < VK_API_VERSION_1_3)
+          throw Exception(ErrorCode::Vulkan, name + " supports Vulkan " +
+                                                 std::to_string(VK_API_VERSION_MAJOR(context->properties_.apiVersion)) +
+                                                 "." + std::to_string(VK_API_VERSION_MINOR(context->properties_.apiVersion)) +
+                                                 "; soundpaint needs 1.3");
+        require_features(host.physical_device, name.c_str(), false);
+        if (host.enabled_features != nullptr) {
+          const std::string missing = missing_enabled_features(host.enabled_features);
+          if (!missing.empty())
+            throw Exception(ErrorCode::Vulkan, "the host's VkDevice was created without Vulkan 1.3 features soundpaint "
+                                               "needs (enable them in VkDeviceCreateInfo::pNext):" + missing);
+        }
+
+        std::uint32_t family_count = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &family_count, nullptr);
+        std::vector<VkQueueFamilyProperties> families(family_count);
+        vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &family_count, families.data());
+        for (std::uint32_t family : host.queue_families) {
+          if (family >= family_count)
+            throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) + " does not exist on " +
+                                                            name + " (it has " + std::to_string(family_count) + ")");
+          if ((families[family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0)
+            throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) + " of " + name +
+                                                            " cannot run compute work");
+          if (std::find(context->sharing_families_.begin(), context->sharing_families_.end(), family) ==
+              context->sharing_families_.end())
+            context->sharing_families_.push_back(family);
+        }
+        context->queue_family_ = host.queue_families.front();
+        return context;
+      },
+      ErrorCode::Vulkan);
+}
+
 Context::~Context() {
+  if (borrowed_) return;  // the host destroys its own device and instance
   if (device_ != VK_NULL_HANDLE) {
     // A lost device cannot be helped while tearing down; destroy regardless.
     (void)vkDeviceWaitIdle(device_);
@@ -269,6 +362,7 @@ void Context::set_name(VkObjectType type, std::uint64_t handle, const char* name
 }
 
 VkCommandBuffer Context::begin_one_time() {
+  if (borrowed_) throw std::logic_error("soundpaint never submits to a host's queues");
   VkCommandBufferAllocateInfo allocate{};
   allocate.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
   allocate.commandPool = one_time_pool_;
@@ -308,6 +402,7 @@ void Context::end_one_time_and_wait(VkCommandBuffer cmd) {
 }
 
 void Context::submit(VkCommandBuffer cmd, VkFence fence) const {
+  if (borrowed_) throw std::logic_error("soundpaint never submits to a host's queues");
   VkCommandBufferSubmitInfo cmd_info{};
   cmd_info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
   cmd_info.commandBuffer = cmd;

@@ -25,12 +25,32 @@ struct ContextSettings {
   std::string device_name;
 };
 
+// A device the host application created and keeps (Visualizer). soundpaint
+// creates its objects on it but never submits, waits or destroys it.
+struct BorrowedDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  // Families whose queues will run soundpaint's commands: buffers they share
+  // are created VK_SHARING_MODE_CONCURRENT when there are two.
+  std::vector<std::uint32_t> queue_families;
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
+  const VkAllocationCallbacks* allocator = nullptr;
+  // The pNext chain the host passed in VkDeviceCreateInfo; when set, the
+  // features soundpaint needs are checked as enabled, not only supported.
+  const void* enabled_features = nullptr;
+};
+
 class Context {
  public:
   // Errors (ErrorCode::Vulkan): no Vulkan loader/driver, no device with
   // Vulkan 1.3 and a compute+graphics queue, no device matching the name,
   // validation requested but the layer is not installed.
   static Result<std::unique_ptr<Context>> create(const ContextSettings& settings = {});
+  // Wraps the host's device. Errors (ErrorCode::Vulkan): a null handle, a
+  // device below Vulkan 1.3 or without a required feature (named), a queue
+  // family out of range or without compute.
+  static Result<std::unique_ptr<Context>> borrow(const BorrowedDevice& host);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -38,7 +58,12 @@ class Context {
   VkInstance instance() const { return instance_; }
   VkPhysicalDevice physical_device() const { return physical_device_; }
   VkDevice device() const { return device_; }
-  VkQueue queue() const { return queue_; }
+  VkQueue queue() const { return queue_; }  // VK_NULL_HANDLE when borrowed
+  bool borrowed() const { return borrowed_; }
+  const VkAllocationCallbacks* allocator() const { return allocator_; }
+  VkPipelineCache pipeline_cache() const { return pipeline_cache_; }
+  // Queue families that share buffers (see BorrowedDevice); one when owned.
+  const std::vector<std::uint32_t>& sharing_families() const { return sharing_families_; }
   std::uint32_t queue_family() const { return queue_family_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::uint32_t subgroup_size() const { return subgroup_size_; }
@@ -65,6 +90,7 @@ class Context {
   }
 
   // Submits one recorded command buffer to the queue, signalling `fence`.
+  // Owned contexts only: a borrowed one throws (the host owns its queues).
   void submit(VkCommandBuffer cmd, VkFence fence) const;
 
   // Records with `record`, submits once, waits for completion. For uploads
@@ -78,6 +104,7 @@ class Context {
 
  private:
   Context() = default;
+  void query_device_properties();
   VkCommandBuffer begin_one_time();
   void end_one_time_and_wait(VkCommandBuffer cmd);
 
@@ -93,6 +120,10 @@ class Context {
   std::uint32_t subgroup_size_ = 1;
   VkCommandPool one_time_pool_ = VK_NULL_HANDLE;
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
+  bool borrowed_ = false;
+  const VkAllocationCallbacks* allocator_ = nullptr;
+  VkPipelineCache pipeline_cache_ = VK_NULL_HANDLE;
+  std::vector<std::uint32_t> sharing_families_;
 
   struct Messages;
   std::unique_ptr<Messages> messages_;

@@ -1,0 +1,112 @@
+// soundpaint inside a host's Vulkan renderer: the simulation recorded into
+// the host's command buffers and the indicators drawn inside the host's own
+// dynamic-rendering pass, on the host's instance, device and queues.
+// docs/integrating.md has the per-frame call sequence and the
+// synchronization contract in full.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <glm/mat4x4.hpp>
+#include <vulkan/vulkan.h>
+
+#include "soundpaint/simulation.h"
+
+namespace sp {
+
+// The host's Vulkan objects, borrowed for the visualizer's lifetime. In this
+// mode soundpaint creates no instance or device and never submits to,
+// waits on or idles a queue: the host submits what it records.
+//
+// Requirements, checked at creation (ErrorCode::Vulkan names what is
+// missing): Vulkan 1.3 with synchronization2, dynamicRendering and
+// maintenance4 enabled; queue families with compute (and graphics for the
+// draw).
+struct HostVulkan {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  // Family of the queue that runs record_draw's command buffers (graphics
+  // and compute), and record_simulation's unless compute_queue_family is set.
+  std::uint32_t queue_family = VK_QUEUE_FAMILY_IGNORED;
+  // Family of an async compute queue that runs record_simulation's command
+  // buffers; VK_QUEUE_FAMILY_IGNORED: queue_family. Buffers shared by both
+  // are then VK_SHARING_MODE_CONCURRENT, and the host's semaphores order
+  // simulation and draw (docs/integrating.md).
+  std::uint32_t compute_queue_family = VK_QUEUE_FAMILY_IGNORED;
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;     // optional
+  const VkAllocationCallbacks* allocator = nullptr;    // optional, used for every object soundpaint creates
+  // Optional: the pNext chain given to vkCreateDevice, so that features are
+  // checked as enabled and not only as supported.
+  const void* enabled_features = nullptr;
+};
+
+// The attachments of the host's rendering that record_draw draws into.
+struct DrawTarget {
+  VkFormat color_format = VK_FORMAT_UNDEFINED;    // required
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;    // UNDEFINED: no depth attachment, indicators not depth-tested
+  VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if it has one
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  // LESS_OR_EQUAL for depth cleared to 1; GREATER_OR_EQUAL for reversed-Z.
+  VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
+};
+
+struct VisualizerSettings {
+  // Gpu: the simulation is compute work in record_simulation's command
+  // buffer. Cpu: it runs on worker threads one step ahead and
+  // record_simulation uploads the finished step's indicators. Auto: Gpu on
+  // a hardware GPU, Cpu on a CPU-type device (lavapipe), where it is faster.
+  BackendChoice backend = BackendChoice::Auto;
+  CpuSettings cpu;
+  // Steps one record_simulation may record when frames are long; time
+  // beyond that is dropped rather than accumulated (no spiral of death).
+  std::uint32_t max_steps_per_frame = 4;
+};
+
+class Visualizer {
+ public:
+  // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
+  // (device below 1.3, missing feature, named), LimitExceeded (a buffer
+  // beyond a device limit). Takes the BVH and buffer setup time; uploads
+  // happen in the first record_simulation.
+  static Result<std::unique_ptr<Visualizer>> create(const HostVulkan& host, const DrawTarget& target, World world,
+                                                    const VisualizerSettings& settings = {});
+
+  // The host must have finished every command buffer recorded by this
+  // visualizer (a fence or vkDeviceWaitIdle) before destroying it.
+  virtual ~Visualizer() = default;
+
+  virtual Backend backend() const = 0;
+
+  // Listener, sources and moving parts; changes apply from the next step.
+  virtual SoundScene& scene() = 0;
+
+  // Steps whose indicators record_draw draws (recorded for Gpu, finished
+  // and handed over for Cpu).
+  virtual std::uint64_t steps_run() const = 0;
+
+  // Records the frame's simulation into `cmd` (recording, outside any
+  // render pass; submitted to queue_family or compute_queue_family) for
+  // `dt` seconds of game time: as many fixed steps of config.dt as fit
+  // (at most max_steps_per_frame), the rest carried to the next frame.
+  // Never waits on the device or on worker threads. Returns the steps
+  // recorded (Gpu) or handed over (Cpu) by this call.
+  virtual Result<std::uint32_t> record_simulation(VkCommandBuffer cmd, double dt) = 0;
+
+  // Records the indicator draw into `cmd`, inside the host's dynamic
+  // rendering whose attachments match the DrawTarget, after the host drew
+  // its depth. Uses the viewport and scissor set in `cmd` unless `area` is
+  // given (then sets both to it). Binds its own pipeline, descriptor set
+  // and push constants: rebind yours afterwards. view and projection as
+  // the host's own draws use them (Vulkan clip space).
+  virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+                                   const VkRect2D* area = nullptr) = 0;
+
+  // Blocks until the CPU backend's step in progress (if any) is finished and
+  // handed over by the next record_simulation. For loading screens,
+  // shutdown and tests; never needed in a frame. No-op for Gpu.
+  virtual Result<bool> wait_for_simulation() = 0;
+};
+
+}  // namespace sp

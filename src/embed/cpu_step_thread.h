@@ -1,0 +1,53 @@
+// The CPU backend one step ahead: a step runs on its own thread (and the
+// runner's pool) while the render thread goes on; the render thread polls
+// and takes the result without blocking.
+#pragma once
+
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "sim/cpu_step_runner.h"
+
+namespace sp::embed {
+
+class CpuStepThread {
+ public:
+  CpuStepThread(unsigned threads, std::size_t layer_count);
+  ~CpuStepThread();  // waits for a running step, then joins
+  CpuStepThread(const CpuStepThread&) = delete;
+  CpuStepThread& operator=(const CpuStepThread&) = delete;
+
+  // Starts a step. Precondition: idle(). `bvh` and `layers` must stay
+  // unchanged until the result is taken.
+  void start(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, StepPlan plan,
+             const shader::SimParams& params);
+
+  bool idle() const;  // no step running, no result waiting
+  // The finished step's output, or null while it runs (never blocks).
+  // Rethrows an exception the step threw. Valid until release().
+  const CpuStepOutput* poll();
+  void release();  // the output was used: idle again
+  void wait();     // blocks until the running step (if any) finished
+
+ private:
+  enum class State { Idle, Running, Done };
+  void loop();
+
+  CpuStepRunner runner_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  State state_ = State::Idle;
+  bool quit_ = false;
+  const Bvh* bvh_ = nullptr;
+  std::span<const shader::LayerAcoustics> layers_;
+  StepPlan plan_;
+  shader::SimParams params_{};
+  CpuStepOutput output_;
+  std::exception_ptr error_;
+  std::thread thread_;  // last: starts after the members it uses exist
+};
+
+}  // namespace sp::embed

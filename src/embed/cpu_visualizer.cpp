@@ -1,0 +1,137 @@
+// The CPU backend in a host's frame loop: each step runs on worker threads
+// while the host renders; the next record_simulation hands its indicators
+// to a device-local ring through the command buffer (only the new ones),
+// then starts the following step. The render thread never blocks on it.
+#include <algorithm>
+
+#include "embed/cpu_step_thread.h"
+#include "embed/visualizers.h"
+#include "sp_draw_types.h"
+#include "vk/barriers.h"
+#include "vk/buffer.h"
+
+namespace sp::embed {
+namespace {
+
+class CpuVisualizer final : public VisualizerBase {
+ public:
+  CpuVisualizer(std::unique_ptr<vk::Context> context, const DrawTarget& target, World world,
+                const VisualizerSettings& settings, bool simulation_on_graphics_queue)
+      : VisualizerBase(std::move(context), target, std::move(world), settings, simulation_on_graphics_queue),
+        max_steps_(settings.max_steps_per_frame),
+        capacity_(scene_.world().config.max_indicators),
+        layer_table_(make_layer_table(scene_.world())),
+        ring_(*context_, VkDeviceSize{capacity_} * sizeof(Indicator),
+              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
+              "cpu indicator ring"),
+        draw_args_(*context_, sizeof(VkDrawIndirectCommand),
+                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
+                   "cpu indicator draw args"),
+        worker_(settings.cpu.threads, scene_.world().layer_names.size()) {}
+
+  ~CpuVisualizer() override { worker_.wait(); }
+
+  Backend backend() const override { return Backend::Cpu; }
+  std::uint64_t steps_run() const override { return steps_run_; }
+
+  Result<bool> wait_for_simulation() override {
+    worker_.wait();
+    return true;
+  }
+
+  Result<std::uint32_t> record_simulation(VkCommandBuffer cmd, double dt) override {
+    if (auto valid = check_simulation_args(cmd, dt); !valid) return valid.error();
+    return capture_errors([&]() -> std::uint32_t {
+      due_ = std::min(due_ + clock_.advance(dt), max_steps_);
+      // WAR: earlier frames' draws are done reading the ring and arguments
+      // before this frame's uploads overwrite them.
+      const VkPipelineStageFlags2 readers =
+          VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+          (simulation_on_graphics_queue_ ? VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT : VK_PIPELINE_STAGE_2_NONE);
+      vk::memory_barrier(cmd, readers | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      std::uint32_t handed = 0;
+      if (!recorded_) upload_draw_args(cmd);
+      if (const CpuStepOutput* finished = worker_.poll()) {
+        upload_step(cmd, finished->indicators);
+        worker_.release();
+        steps_run_ += 1;
+        handed = 1;
+      }
+      if (due_ > 0 && worker_.idle()) start_next_step();
+      // RAW: the uploads reach the indicator draw.
+      vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, readers,
+                         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+      recorded_ = true;
+      return handed;
+    });
+  }
+
+ protected:
+  gpu::IndicatorView indicator_view() override {
+    gpu::IndicatorView view;
+    view.context = context_.get();
+    view.ring = ring_.get();
+    view.ring_capacity = capacity_;
+    view.draw_args = draw_args_.get();
+    return view;
+  }
+  bool ready_to_draw() const override { return recorded_; }
+
+ private:
+  void start_next_step() {
+    // The worker is idle, so nothing reads the BVH while it is refitted.
+    (void)scene_.update_geometry();
+    StepPlan plan;
+    scene_.plan(next_step_, plan);
+    worker_.start(scene_.world().bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
+    next_step_ += 1;
+    due_ -= 1;
+  }
+
+  // Appends a step's indicators to the ring as IndicatorRing does (the
+  // oldest overwritten; of more than capacity only the newest stay),
+  // uploading only the slots that changed.
+  void upload_step(VkCommandBuffer cmd, std::span<const Indicator> indicators) {
+    if (indicators.size() > capacity_) indicators = indicators.last(capacity_);
+    std::size_t done = 0;
+    while (done < indicators.size()) {
+      const std::uint64_t slot = (pushed_ + done) % capacity_;
+      const std::size_t run = std::min<std::size_t>(indicators.size() - done, capacity_ - slot);
+      vk::record_update(cmd, ring_, slot * sizeof(Indicator), &indicators[done], run * sizeof(Indicator));
+      done += run;
+    }
+    pushed_ += indicators.size();
+    upload_draw_args(cmd);
+  }
+
+  void upload_draw_args(VkCommandBuffer cmd) {
+    VkDrawIndirectCommand command{};
+    command.vertexCount = SP_INDICATOR_QUAD_VERTICES;
+    command.instanceCount = static_cast<std::uint32_t>(std::min<std::uint64_t>(pushed_, capacity_));
+    vk::record_update(cmd, draw_args_, 0, &command, sizeof command);
+  }
+
+  std::uint32_t max_steps_;
+  std::uint32_t capacity_;
+  std::vector<shader::LayerAcoustics> layer_table_;
+  vk::Buffer ring_;
+  vk::Buffer draw_args_;
+  CpuStepThread worker_;  // after what its running step reads
+  std::uint64_t pushed_ = 0;     // indicators ever appended to the ring
+  std::uint64_t steps_run_ = 0;  // steps handed over
+  std::uint64_t next_step_ = 0;  // step the worker runs next
+  std::uint32_t due_ = 0;        // steps due but not started
+  bool recorded_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Visualizer> make_cpu_visualizer(std::unique_ptr<vk::Context> context, const DrawTarget& target,
+                                                World world, const VisualizerSettings& settings,
+                                                bool simulation_on_graphics_queue) {
+  return std::make_unique<CpuVisualizer>(std::move(context), target, std::move(world), settings,
+                                         simulation_on_graphics_queue);
+}
+
+}  // namespace sp::embed

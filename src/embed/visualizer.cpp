@@ -1,0 +1,85 @@
+// Visualizer::create: checks the host's objects and formats, wraps the
+// host's device, and picks the backend by the library's shared policy.
+#include <string>
+#include <vector>
+
+#include "embed/visualizers.h"
+
+namespace sp {
+namespace {
+
+Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
+
+bool family_has(VkPhysicalDevice device, std::uint32_t family, VkQueueFlags flags) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  return family < count && (families[family].queueFlags & flags) == flags;
+}
+
+bool format_has(VkPhysicalDevice device, VkFormat format, VkFormatFeatureFlags feature) {
+  VkFormatProperties properties{};
+  vkGetPhysicalDeviceFormatProperties(device, format, &properties);
+  return (properties.optimalTilingFeatures & feature) != 0;
+}
+
+Result<bool> check_target(VkPhysicalDevice device, const DrawTarget& target) {
+  if (target.color_format == VK_FORMAT_UNDEFINED) return invalid("DrawTarget: color_format must be set");
+  if (!format_has(device, target.color_format, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+    return invalid("DrawTarget: color format " + std::to_string(target.color_format) +
+                   " cannot be a blended colour attachment on this device");
+  if (target.depth_format != VK_FORMAT_UNDEFINED &&
+      !format_has(device, target.depth_format, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    return invalid("DrawTarget: depth format " + std::to_string(target.depth_format) +
+                   " is not a depth attachment format on this device");
+  const VkSampleCountFlagBits s = target.samples;
+  if (s == 0 || (s & (s - 1)) != 0 || s > VK_SAMPLE_COUNT_64_BIT)
+    return invalid("DrawTarget: samples must be one VkSampleCountFlagBits value");
+  if (target.depth_compare > VK_COMPARE_OP_ALWAYS) return invalid("DrawTarget: depth_compare is not a VkCompareOp");
+  return true;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Visualizer>> Visualizer::create(const HostVulkan& host, const DrawTarget& target, World world,
+                                                       const VisualizerSettings& settings) {
+  if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE)
+    return invalid("Visualizer: the host's VkInstance, VkPhysicalDevice and VkDevice must all be set");
+  if (host.queue_family == VK_QUEUE_FAMILY_IGNORED) return invalid("Visualizer: HostVulkan::queue_family must be set");
+  if (settings.max_steps_per_frame == 0) return invalid("Visualizer: max_steps_per_frame must be >= 1");
+  if (world.bvh.nodes.empty()) return invalid("Visualizer: the world has no BVH (make it with make_world)");
+  if (auto valid = check_target(host.physical_device, target); !valid) return valid.error();
+  if (!family_has(host.physical_device, host.queue_family, VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
+    return invalid("Visualizer: queue family " + std::to_string(host.queue_family) +
+                   " must support graphics and compute (it runs the indicator draw)");
+
+  vk::BorrowedDevice borrowed;
+  borrowed.instance = host.instance;
+  borrowed.physical_device = host.physical_device;
+  borrowed.device = host.device;
+  borrowed.queue_families = {host.queue_family};
+  const bool async_compute =
+      host.compute_queue_family != VK_QUEUE_FAMILY_IGNORED && host.compute_queue_family != host.queue_family;
+  if (async_compute) borrowed.queue_families.push_back(host.compute_queue_family);
+  borrowed.pipeline_cache = host.pipeline_cache;
+  borrowed.allocator = host.allocator;
+  borrowed.enabled_features = host.enabled_features;
+  Result<std::unique_ptr<vk::Context>> context = vk::Context::borrow(borrowed);
+  if (!context) return context.error();
+  const bool simulation_on_graphics_queue =
+      !async_compute || family_has(host.physical_device, host.compute_queue_family, VK_QUEUE_GRAPHICS_BIT);
+
+  const bool cpu_device = (*context)->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  const bool use_gpu =
+      settings.backend == BackendChoice::Gpu || (settings.backend == BackendChoice::Auto && !cpu_device);
+  return capture_errors([&]() -> std::unique_ptr<Visualizer> {
+    if (use_gpu)
+      return embed::make_gpu_visualizer(std::move(*context), target, std::move(world), settings,
+                                        simulation_on_graphics_queue);
+    return embed::make_cpu_visualizer(std::move(*context), target, std::move(world), settings,
+                                      simulation_on_graphics_queue);
+  }, ErrorCode::Vulkan);
+}
+
+}  // namespace sp
