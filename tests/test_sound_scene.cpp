@@ -1,0 +1,158 @@
+// SoundScene's bookkeeping and argument checks, without a backend: ids and
+// slots, capacity, play windows and one-shots as the step plan sees them,
+// and every misuse an engine binding could make.
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "sim/step_plan.h"
+#include "soundpaint/simulation.h"
+#include "support/scene_builder.h"
+
+namespace sp {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+World room_world(std::size_t sources, bool movable_box = false) {
+  Scene scene = test::closed_room();
+  scene.sources.clear();
+  for (std::size_t i = 0; i < sources; ++i) scene.sources.push_back(test::source_at({0, 1, 0}));
+  if (movable_box) {
+    const std::size_t first = scene.triangle_count();
+    test::add_box(scene, {1, 0, 0}, {1.2f, 2, 1}, "wood");
+    scene.instance_names = {"door"};
+    scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+    for (std::size_t t = first; t < scene.triangle_count(); ++t) scene.triangle_instances[t] = 0;
+  }
+  Config config;
+  config.listener_position = glm::vec3(0, 1.5f, 0);
+  config.ray_budget = 90;
+  return make_world(scene, config).value();
+}
+
+std::vector<std::uint32_t> planned_ids(SoundScene& scene, std::uint64_t step) {
+  StepPlan plan;
+  scene.plan(step, plan);
+  std::vector<std::uint32_t> ids;
+  for (const auto& s : plan.sources) ids.push_back(s.source_id);
+  return ids;
+}
+
+void expect_invalid(const Result<bool>& r, const char* words) {
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_NE(r.error().message.find(words), std::string::npos) << r.error().message;
+}
+
+TEST(SoundScene, AddedSourcesTakeTheLowestFreeSlot) {
+  SoundScene scene(room_world(2));
+  EXPECT_EQ(scene.add_source(test::source_at({1, 1, 1})).value(), 2u);
+  ASSERT_TRUE(scene.remove_source(0).ok());
+  EXPECT_FALSE(scene.has_source(0));
+  EXPECT_EQ(scene.add_source(test::source_at({1, 1, 1})).value(), 0u);
+  EXPECT_EQ(planned_ids(scene, 0), (std::vector<std::uint32_t>{0, 1, 2}));
+}
+
+TEST(SoundScene, RemovedSourcesAreNotPlannedAndSplitNoBudget) {
+  SoundScene scene(room_world(3));
+  ASSERT_TRUE(scene.remove_source(1).ok());
+  StepPlan plan;
+  scene.plan(0, plan);
+  ASSERT_EQ(plan.sources.size(), 2u);
+  EXPECT_EQ(plan.sources[0].ray_count, 45u);  // 90 rays over the two left
+  EXPECT_EQ(plan.sources[1].source_id, 2u);
+}
+
+TEST(SoundScene, CapacityIsEnforcedWithLimitExceeded) {
+  SoundScene scene(room_world(0));
+  for (std::uint32_t i = 0; i < scene.source_capacity(); ++i) ASSERT_TRUE(scene.add_source(test::source_at({0, 1, 0})).ok());
+  Result<std::uint32_t> one_more = scene.add_source(test::source_at({0, 1, 0}));
+  ASSERT_FALSE(one_more.ok());
+  EXPECT_EQ(one_more.error().code, ErrorCode::LimitExceeded);
+  ASSERT_TRUE(scene.remove_source(7).ok());
+  EXPECT_EQ(scene.emit(test::source_at({0, 1, 0}), 1.0).value(), 7u);
+}
+
+TEST(SoundScene, PlayOpensAWindowFromTheNextStep) {
+  World world = room_world(1);
+  world.sources[0].duration = 0.0;  // silent by pattern
+  const double dt = world.config.dt;
+  SoundScene scene(std::move(world));
+  EXPECT_TRUE(planned_ids(scene, 0).empty());
+  ASSERT_TRUE(scene.play(0, 3 * dt - 1e-9).ok());  // steps 1, 2, 3
+  EXPECT_EQ(planned_ids(scene, 1).size(), 1u);
+  EXPECT_EQ(planned_ids(scene, 2).size(), 1u);
+  EXPECT_EQ(planned_ids(scene, 3).size(), 1u);
+  EXPECT_TRUE(planned_ids(scene, 4).empty());
+}
+
+TEST(SoundScene, EmittedOneShotIgnoresItsPatternAndFreesItsSlot) {
+  SoundScene scene(room_world(0));
+  SourceDesc pattern = test::source_at({0, 1, 0});
+  pattern.phase = 100.0;  // would never play by pattern
+  const double dt = scene.world().config.dt;
+  const std::uint32_t id = scene.emit(pattern, 2 * dt - 1e-9).value();
+  EXPECT_EQ(planned_ids(scene, 0), std::vector<std::uint32_t>{id});
+  EXPECT_EQ(planned_ids(scene, 1), std::vector<std::uint32_t>{id});
+  EXPECT_TRUE(planned_ids(scene, 2).empty());
+  EXPECT_FALSE(scene.has_source(id));
+}
+
+TEST(SoundScene, MisuseIsAnErrorNamingTheProblem) {
+  SoundScene scene(room_world(1, true));
+  expect_invalid(scene.set_listener({kNaN, 0, 0}), "finite");
+  expect_invalid(scene.move_source(0, {0, kNaN, 0}), "finite");
+  expect_invalid(scene.move_source(5, {0, 0, 0}), "unknown source id 5");
+  expect_invalid(scene.play(0, -1.0), "duration");
+  expect_invalid(scene.play(0, std::nan("")), "duration");
+  SourceDesc bad = test::source_at({0, 0, 0});
+  bad.interval = 0.0;
+  EXPECT_FALSE(scene.add_source(bad).ok());
+  expect_invalid(scene.update_source(0, bad), "interval");
+  bad = test::source_at({0, 0, kNaN});
+  EXPECT_FALSE(scene.emit(bad, 1.0).ok());
+  ASSERT_TRUE(scene.remove_source(0).ok());
+  expect_invalid(scene.remove_source(0), "was removed");
+  expect_invalid(scene.play(0, 1.0), "was removed");
+  glm::mat4 nan_matrix(1.0f);
+  nan_matrix[3][1] = kNaN;
+  expect_invalid(scene.set_instance_transform(0, nan_matrix), "finite");
+  expect_invalid(scene.set_instance_transform(1, glm::mat4(1.0f)), "unknown instance 1");
+  EXPECT_FALSE(scene.geometry_pending());
+}
+
+TEST(SoundScene, InstanceTransformsMoveOnlyTheirTrianglesAtTheNextUpdate) {
+  SoundScene scene(room_world(0, true));
+  const float door_top_before = scene.world().bvh.nodes[0].bmax.y;
+  ASSERT_TRUE(scene.set_instance_transform(0, glm::translate(glm::mat4(1.0f), {0, 5, 0})).ok());
+  EXPECT_TRUE(scene.geometry_pending());
+  EXPECT_EQ(scene.world().bvh.nodes[0].bmax.y, door_top_before);  // nothing moves before the step
+  const BvhChanges changes = scene.update_geometry();
+  EXPECT_FALSE(changes.triangles.empty());
+  // The door's top, 2 m, moved to 7 m; the room's own top is 3.3 m.
+  EXPECT_FLOAT_EQ(scene.world().bvh.nodes[0].bmax.y, 7.0f);
+  std::size_t moved = 0;
+  for (const BvhTriangle& t : scene.world().bvh.triangles) moved += t.v0.y >= 5.0f ? 1 : 0;
+  EXPECT_EQ(moved, 12u);
+  EXPECT_TRUE(scene.update_geometry().triangles.empty());  // nothing pending
+}
+
+TEST(SoundScene, SceneInstanceTablesAreChecked) {
+  Scene scene = test::closed_room();
+  scene.instance_names = {"door"};
+  scene.triangle_instances.assign(scene.triangle_count(), 3);
+  Config config;
+  config.listener_position = glm::vec3(0, 1, 0);
+  Result<World> world = make_world(scene, config);
+  ASSERT_FALSE(world.ok());
+  EXPECT_EQ(world.error().code, ErrorCode::InvalidScene);
+  EXPECT_NE(world.error().message.find("instance 3"), std::string::npos);
+  scene.triangle_instances.resize(5);
+  EXPECT_FALSE(make_world(scene, config).ok());
+}
+
+}  // namespace
+}  // namespace sp
