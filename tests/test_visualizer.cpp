@@ -1,0 +1,232 @@
+// The Visualizer on a device it does not own: the test plays the host,
+// lending the shared validation-enabled context's handles, recording into
+// its own command buffers and submitting them itself. The pictures of the
+// GPU and CPU backends must agree (the backends are bit-identical), frames
+// in flight must be valid Vulkan, and misuse must be an error.
+#include <gtest/gtest.h>
+
+#include "draw/render_target.h"
+#include "draw/view_camera.h"
+#include "soundpaint/visualizer.h"
+#include "support/gpu_environment.h"
+#include "support/render_checks.h"
+#include "support/scene_builder.h"
+#include "vk/handle.h"
+#include "vk/vk_check.h"
+
+namespace sp {
+namespace {
+
+constexpr std::uint32_t kWidth = 160;
+constexpr std::uint32_t kHeight = 120;
+
+World mirror_room() {
+  Scene scene = test::closed_room();
+  Config config;
+  config.listener_position = glm::vec3(-2.0f, 1.5f, 1.5f);
+  config.ray_budget = 150;
+  config.layers["concrete"] = {1.0f, 5.0f};
+  return make_world(scene, config).value();
+}
+
+HostVulkan host_of(const vk::Context& context) {
+  HostVulkan host;
+  host.instance = context.instance();
+  host.physical_device = context.physical_device();
+  host.device = context.device();
+  host.queue_family = context.queue_family();
+  return host;
+}
+
+DrawTarget target_formats() {
+  DrawTarget target;
+  target.color_format = draw::RenderTarget::kColorFormat;
+  target.depth_format = draw::RenderTarget::kDepthFormat;
+  return target;
+}
+
+// The host's side: a command pool, a render target, and frames recorded,
+// submitted and waited for as a renderer would.
+class Host : public test::GpuTest {
+ protected:
+  void SetUp() override {
+    test::GpuTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+    context_ = test::GpuEnvironment::context();
+    VkCommandPoolCreateInfo pool_info{};
+    pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool_info.queueFamilyIndex = context_->queue_family();
+    VkCommandPool pool = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateCommandPool(context_->device(), &pool_info, nullptr, &pool));
+    pool_ = vk::UniqueCommandPool(context_->device(), pool);
+    target_ = std::make_unique<draw::RenderTarget>(*context_, kWidth, kHeight);
+    camera_ = draw::make_view_camera(std::nullopt, mirror_room(), {}, kWidth, kHeight);
+  }
+
+  std::unique_ptr<Visualizer> visualizer(BackendChoice backend) {
+    VisualizerSettings settings;
+    settings.backend = backend;
+    settings.cpu.threads = 2;
+    return std::move(Visualizer::create(host_of(*context_), target_formats(), mirror_room(), settings).value());
+  }
+
+  VkCommandBuffer begin() {
+    VkCommandBufferAllocateInfo alloc{};
+    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    alloc.commandPool = pool_.get();
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkAllocateCommandBuffers(context_->device(), &alloc, &cmd));
+    VkCommandBufferBeginInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    SP_VK_CHECK(vkBeginCommandBuffer(cmd, &info));
+    return cmd;
+  }
+
+  void submit_and_wait(std::initializer_list<VkCommandBuffer> cmds) {
+    for (VkCommandBuffer cmd : cmds) {
+      VkFenceCreateInfo fence_info{};
+      fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+      VkFence fence = VK_NULL_HANDLE;
+      SP_VK_CHECK(vkCreateFence(context_->device(), &fence_info, nullptr, &fence));
+      vk::UniqueFence owned(context_->device(), fence);
+      context_->submit(cmd, fence);
+      SP_VK_CHECK(vkWaitForFences(context_->device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    }
+  }
+
+  // One frame: simulation, then the host's rendering with the indicators
+  // drawn into it, then the read-back.
+  draw::RgbaImage frame(Visualizer& visualizer, double dt) {
+    VkCommandBuffer cmd = begin();
+    EXPECT_TRUE(visualizer.record_simulation(cmd, dt).ok());
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    target_->begin(cmd, clear);
+    const VkRect2D area{{0, 0}, {kWidth, kHeight}};
+    EXPECT_TRUE(visualizer.record_draw(cmd, camera_.view, camera_.projection, &area).ok());
+    target_->end_and_copy(cmd);
+    SP_VK_CHECK(vkEndCommandBuffer(cmd));
+    submit_and_wait({cmd});
+    return target_->read();
+  }
+
+  vk::Context* context_ = nullptr;
+  vk::UniqueCommandPool pool_;
+  std::unique_ptr<draw::RenderTarget> target_;
+  draw::ViewCamera camera_;
+};
+
+std::size_t coloured_pixels(const draw::RgbaImage& image) { return test::count_pixels(image, test::is_saturated); }
+
+TEST_F(Host, GpuAndCpuBackendsDrawTheSamePicture) {
+  const double dt = mirror_room().config.dt;
+  auto gpu = visualizer(BackendChoice::Gpu);
+  auto cpu = visualizer(BackendChoice::Cpu);
+  ASSERT_EQ(gpu->backend(), Backend::Gpu);
+  ASSERT_EQ(cpu->backend(), Backend::Cpu);
+
+  // Steps 0..4 on each. The CPU backend hands a step over one frame after
+  // starting it; waiting makes each hand-over certain for the comparison.
+  draw::RgbaImage gpu_image;
+  for (int n = 0; n < 5; ++n) gpu_image = frame(*gpu, dt);
+  draw::RgbaImage cpu_image = frame(*cpu, dt);
+  EXPECT_EQ(coloured_pixels(cpu_image), 0u);  // nothing handed over yet
+  for (int n = 0; n < 5; ++n) {
+    ASSERT_TRUE(cpu->wait_for_simulation().ok());
+    cpu_image = frame(*cpu, dt);
+  }
+  EXPECT_EQ(gpu->steps_run(), 5u);
+  EXPECT_EQ(cpu->steps_run(), 5u);
+  EXPECT_GT(coloured_pixels(gpu_image), 200u);
+  // Same indicators; only the blending order of overlapping ones differs.
+  EXPECT_LT(test::differing_pixels(gpu_image, cpu_image, 3, nullptr), kWidth * kHeight / 200);
+}
+
+TEST_F(Host, FrameTimesBecomeFixedStepsCappedPerFrame) {
+  auto gpu = visualizer(BackendChoice::Gpu);
+  const double dt = mirror_room().config.dt;
+  std::uint32_t steps[4] = {};
+  VkCommandBuffer cmd = begin();
+  steps[0] = gpu->record_simulation(cmd, 0.5 * dt).value();
+  steps[1] = gpu->record_simulation(cmd, 0.5 * dt).value();
+  steps[2] = gpu->record_simulation(cmd, 100 * dt).value();  // a hitch: at most 4
+  steps[3] = gpu->record_simulation(cmd, 0.0).value();
+  SP_VK_CHECK(vkEndCommandBuffer(cmd));
+  submit_and_wait({cmd});
+  EXPECT_EQ(steps[0], 0u);
+  EXPECT_EQ(steps[1], 1u);
+  EXPECT_EQ(steps[2], 4u);
+  EXPECT_LE(steps[3], 1u);  // at most the one step of carried time
+  EXPECT_EQ(gpu->steps_run(), 5u + steps[3]);
+}
+
+TEST_F(Host, TwoFramesInFlightRecordedBeforeEitherRuns) {
+  for (BackendChoice backend : {BackendChoice::Gpu, BackendChoice::Cpu}) {
+    auto vis = visualizer(backend);
+    const double dt = mirror_room().config.dt;
+    VkCommandBuffer first = begin();
+    ASSERT_TRUE(vis->record_simulation(first, dt).ok());
+    SP_VK_CHECK(vkEndCommandBuffer(first));
+    ASSERT_TRUE(vis->wait_for_simulation().ok());
+    // A moving source between the frames changes only what the second records.
+    ASSERT_TRUE(vis->scene().move_source(0, {1.0f, 1.0f, 1.0f}).ok());
+    VkCommandBuffer second = begin();
+    ASSERT_TRUE(vis->record_simulation(second, dt).ok());
+    SP_VK_CHECK(vkEndCommandBuffer(second));
+    submit_and_wait({first, second});
+    EXPECT_GE(vis->steps_run(), 1u);
+  }
+}
+
+TEST_F(Host, MisuseIsAnErrorNotACrash) {
+  HostVulkan host = host_of(*context_);
+  World world = mirror_room();
+  HostVulkan no_device = host;
+  no_device.device = VK_NULL_HANDLE;
+  EXPECT_EQ(Visualizer::create(no_device, target_formats(), world).error().code, ErrorCode::InvalidArgument);
+  HostVulkan no_family = host;
+  no_family.queue_family = VK_QUEUE_FAMILY_IGNORED;
+  EXPECT_FALSE(Visualizer::create(no_family, target_formats(), world).ok());
+  HostVulkan bad_family = host;
+  bad_family.queue_family = 99;
+  EXPECT_FALSE(Visualizer::create(bad_family, target_formats(), world).ok());
+  DrawTarget no_colour = target_formats();
+  no_colour.color_format = VK_FORMAT_UNDEFINED;
+  EXPECT_NE(Visualizer::create(host, no_colour, world).error().message.find("color_format"), std::string::npos);
+  DrawTarget odd_samples = target_formats();
+  odd_samples.samples = static_cast<VkSampleCountFlagBits>(3);
+  EXPECT_FALSE(Visualizer::create(host, odd_samples, world).ok());
+  VisualizerSettings zero_steps;
+  zero_steps.max_steps_per_frame = 0;
+  EXPECT_FALSE(Visualizer::create(host, target_formats(), world, zero_steps).ok());
+
+  // A device created without the features soundpaint needs.
+  VkPhysicalDeviceVulkan13Features without{};
+  without.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  without.dynamicRendering = VK_TRUE;
+  HostVulkan lacking = host;
+  lacking.enabled_features = &without;
+  Result<std::unique_ptr<Visualizer>> refused = Visualizer::create(lacking, target_formats(), world);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::Vulkan);
+  EXPECT_NE(refused.error().message.find("synchronization2"), std::string::npos) << refused.error().message;
+  EXPECT_EQ(refused.error().message.find("dynamicRendering"), std::string::npos) << refused.error().message;
+
+  auto vis = visualizer(BackendChoice::Gpu);
+  VkCommandBuffer cmd = begin();
+  EXPECT_FALSE(vis->record_draw(cmd, camera_.view, camera_.projection).ok());  // before any simulation
+  EXPECT_FALSE(vis->record_simulation(VK_NULL_HANDLE, 0.01).ok());
+  EXPECT_FALSE(vis->record_simulation(cmd, -1.0).ok());
+  EXPECT_FALSE(vis->record_simulation(cmd, std::nan("")).ok());
+  glm::mat4 nan_view = camera_.view;
+  nan_view[0][0] = std::nanf("");
+  ASSERT_TRUE(vis->record_simulation(cmd, 0.0).ok());
+  EXPECT_FALSE(vis->record_draw(cmd, nan_view, camera_.projection).ok());
+  SP_VK_CHECK(vkEndCommandBuffer(cmd));
+  submit_and_wait({cmd});
+}
+
+}  // namespace
+}  // namespace sp
