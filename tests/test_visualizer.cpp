@@ -4,6 +4,12 @@
 // GPU and CPU backends must agree (the backends are bit-identical), frames
 // in flight must be valid Vulkan, and misuse must be an error.
 #include <gtest/gtest.h>
+#include <malloc.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
 
 #include "draw/render_target.h"
 #include "draw/view_camera.h"
@@ -118,6 +124,49 @@ class Host : public test::GpuTest {
   draw::ViewCamera camera_;
 };
 
+// Host allocation callbacks that count what passes through them.
+struct CountingAllocator {
+  std::atomic<int> live{0};
+  std::atomic<int> total{0};
+
+  static void* allocate(void* user, std::size_t size, std::size_t alignment, VkSystemAllocationScope) {
+    alignment = std::max<std::size_t>(alignment, alignof(std::max_align_t));
+    void* p = std::aligned_alloc(alignment, (std::max<std::size_t>(size, 1) + alignment - 1) / alignment * alignment);
+    if (p != nullptr) {
+      static_cast<CountingAllocator*>(user)->live += 1;
+      static_cast<CountingAllocator*>(user)->total += 1;
+    }
+    return p;
+  }
+  static void* reallocate(void* user, void* old, std::size_t size, std::size_t alignment,
+                          VkSystemAllocationScope scope) {
+    if (old == nullptr) return allocate(user, size, alignment, scope);
+    if (size == 0) {
+      release(user, old);
+      return nullptr;
+    }
+    void* p = allocate(user, size, alignment, scope);
+    if (p == nullptr) return nullptr;
+    std::memcpy(p, old, std::min(size, malloc_usable_size(old)));
+    release(user, old);
+    return p;
+  }
+  static void release(void* user, void* p) {
+    if (p == nullptr) return;
+    static_cast<CountingAllocator*>(user)->live -= 1;
+    std::free(p);
+  }
+
+  VkAllocationCallbacks callbacks() {
+    VkAllocationCallbacks c{};
+    c.pUserData = this;
+    c.pfnAllocation = allocate;
+    c.pfnReallocation = reallocate;
+    c.pfnFree = release;
+    return c;
+  }
+};
+
 std::size_t coloured_pixels(const draw::RgbaImage& image) { return test::count_pixels(image, test::is_saturated); }
 
 TEST_F(Host, GpuAndCpuBackendsDrawTheSamePicture) {
@@ -178,6 +227,26 @@ TEST_F(Host, TwoFramesInFlightRecordedBeforeEitherRuns) {
     submit_and_wait({first, second});
     EXPECT_GE(vis->steps_run(), 1u);
   }
+}
+
+TEST_F(Host, HostAllocatorServesEveryObjectAndAPipelineCacheIsAccepted) {
+  CountingAllocator counter;
+  const VkAllocationCallbacks callbacks = counter.callbacks();
+  VkPipelineCacheCreateInfo cache_info{};
+  cache_info.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+  VkPipelineCache cache = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreatePipelineCache(context_->device(), &cache_info, nullptr, &cache));
+  HostVulkan host = host_of(*context_);
+  host.allocator = &callbacks;
+  host.pipeline_cache = cache;
+  {
+    auto vis = Visualizer::create(host, target_formats(), mirror_room()).value();
+    EXPECT_GT(counter.live.load(), 0);  // the objects soundpaint made are alive
+    frame(*vis, mirror_room().config.dt);
+  }
+  EXPECT_GT(counter.total.load(), 0);
+  EXPECT_EQ(counter.live.load(), 0);  // and every one was freed through the callbacks
+  vkDestroyPipelineCache(context_->device(), cache, nullptr);
 }
 
 TEST_F(Host, MisuseIsAnErrorNotACrash) {
