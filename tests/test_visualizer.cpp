@@ -15,6 +15,7 @@
 #include "draw/view_camera.h"
 #include "soundpaint/visualizer.h"
 #include "support/gpu_environment.h"
+#include "support/host_commands.h"
 #include "support/render_checks.h"
 #include "support/scene_builder.h"
 #include "vk/handle.h"
@@ -59,13 +60,7 @@ class Host : public test::GpuTest {
     test::GpuTest::SetUp();
     if (IsSkipped() || HasFatalFailure()) return;
     context_ = test::GpuEnvironment::context();
-    VkCommandPoolCreateInfo pool_info{};
-    pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = context_->queue_family();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateCommandPool(context_->device(), &pool_info, nullptr, &pool));
-    pool_ = vk::UniqueCommandPool(context_->device(), pool);
+    commands_ = std::make_unique<test::HostCommands>(*context_);
     target_ = std::make_unique<draw::RenderTarget>(*context_, kWidth, kHeight);
     camera_ = draw::make_view_camera(std::nullopt, mirror_room(), {}, kWidth, kHeight);
   }
@@ -77,31 +72,8 @@ class Host : public test::GpuTest {
     return std::move(Visualizer::create(host_of(*context_), target_formats(), mirror_room(), settings).value());
   }
 
-  VkCommandBuffer begin() {
-    VkCommandBufferAllocateInfo alloc{};
-    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    alloc.commandPool = pool_.get();
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkAllocateCommandBuffers(context_->device(), &alloc, &cmd));
-    VkCommandBufferBeginInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    SP_VK_CHECK(vkBeginCommandBuffer(cmd, &info));
-    return cmd;
-  }
-
-  void submit_and_wait(std::initializer_list<VkCommandBuffer> cmds) {
-    for (VkCommandBuffer cmd : cmds) {
-      VkFenceCreateInfo fence_info{};
-      fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-      VkFence fence = VK_NULL_HANDLE;
-      SP_VK_CHECK(vkCreateFence(context_->device(), &fence_info, nullptr, &fence));
-      vk::UniqueFence owned(context_->device(), fence);
-      context_->submit(cmd, fence);
-      SP_VK_CHECK(vkWaitForFences(context_->device(), 1, &fence, VK_TRUE, UINT64_MAX));
-    }
-  }
+  VkCommandBuffer begin() { return commands_->begin(); }
+  void submit_and_wait(std::initializer_list<VkCommandBuffer> cmds) { commands_->submit_and_wait(cmds); }
 
   // One frame: simulation, then the host's rendering with the indicators
   // drawn into it, then the read-back.
@@ -119,7 +91,7 @@ class Host : public test::GpuTest {
   }
 
   vk::Context* context_ = nullptr;
-  vk::UniqueCommandPool pool_;
+  std::unique_ptr<test::HostCommands> commands_;
   std::unique_ptr<draw::RenderTarget> target_;
   draw::ViewCamera camera_;
 };

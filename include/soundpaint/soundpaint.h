@@ -4,23 +4,40 @@
  * Units: metres and seconds; energies are in units of a source's loudness E0.
  *
  * Conventions that hold for every function below:
- * - Handles (sp_scene, sp_simulation) are opaque. Each *_create / *_load has
- *   one *_destroy; the caller owns what it creates and must destroy it exactly
- *   once. Destroying NULL is a no-op. Using a handle after destroying it is
- *   undefined behaviour (it cannot be detected).
+ * - Handles (sp_scene, sp_simulation, sp_visualizer) are opaque. Each
+ *   *_create / *_load has one *_destroy; the caller owns what it creates and
+ *   must destroy it exactly once. Destroying NULL is a no-op returning SP_OK.
+ * - Misuse of handles is detected where it can be: the library keeps a
+ *   process-wide registry of live handles, and every function taking a
+ *   handle (destroy included) checks it, so a handle that was destroyed or
+ *   never created gives SP_ERROR_INVALID_ARGUMENT ("... handle is not live")
+ *   instead of undefined behaviour. Not detectable: a handle destroyed and
+ *   whose address the allocator then reused for a new handle of the same
+ *   type (the call then acts on the new one), and a handle destroyed by one
+ *   thread while another thread is inside a call on it.
+ * - An sp_sound_scene is borrowed, never created or destroyed by the caller:
+ *   it is live exactly while the simulation or visualizer it came from is.
  * - Functions returning sp_result never throw or abort on bad input: they
  *   return SP_OK on success, or an error code and set the calling thread's
  *   last error message (see sp_last_error_message). On error, out-parameters
- *   are left unchanged unless stated otherwise.
+ *   are left unchanged and nothing is half-applied, unless stated otherwise.
  * - Pointers documented as "non-NULL" are checked: NULL gives
- *   SP_ERROR_INVALID_ARGUMENT.
+ *   SP_ERROR_INVALID_ARGUMENT. Every float and double argument, and every
+ *   field of a struct argument that the call uses, is checked finite.
  * - Thread-safety: different handles may be used from different threads at
- *   the same time. One sp_simulation must be used by one thread at a time
- *   (calls on it are not synchronised). An sp_scene is read-only after
- *   creation and may be shared by threads creating simulations from it.
+ *   the same time. One sp_simulation (with its sp_sound_scene) must be used
+ *   by one thread at a time (calls on it are not synchronised). An sp_scene
+ *   is read-only after creation and may be shared by threads creating
+ *   simulations from it.
  * - Sound sources come from the scene (glTF nodes) and the JSON config
- *   ("sources") given at simulation creation; this version cannot add, move
- *   or remove sources at run time.
+ *   ("sources") given at creation, and can be added, changed, moved, played,
+ *   emitted once and removed at run time through the owner's sp_sound_scene
+ *   (sp_simulation_scene, sp_visualizer_scene); every change applies from
+ *   the next step on. Moving parts (sp_scene_create_with_instances, glTF)
+ *   are placed the same way (sp_sound_scene_set_instance_transform).
+ * - The visualizer (simulation recorded into, and indicators drawn by, the
+ *   host's own Vulkan command buffers) is in soundpaint_vulkan.h, so that
+ *   engines without Vulkan never need Vulkan headers.
  */
 #ifndef SOUNDPAINT_SOUNDPAINT_H
 #define SOUNDPAINT_SOUNDPAINT_H
@@ -40,7 +57,7 @@ extern "C" {
 
 typedef enum sp_result {
   SP_OK = 0,
-  SP_ERROR_INVALID_ARGUMENT, /* an argument is NULL, non-finite or out of range */
+  SP_ERROR_INVALID_ARGUMENT, /* an argument is NULL, non-finite, out of range, or a handle not live */
   SP_ERROR_INVALID_SCENE,    /* a scene file or scene arrays are missing, malformed or unsupported */
   SP_ERROR_INVALID_CONFIG,   /* the JSON configuration is malformed or a value is out of range */
   SP_ERROR_IO,               /* reading a file failed */
@@ -60,12 +77,22 @@ typedef enum sp_backend {
 #define SP_INDICATOR_KIND_HIT 0u  /* a ray hit a surface */
 #define SP_INDICATOR_KIND_EXIT 1u /* a ray left a surface after penetrating it */
 
-/* A triangle soup with a collision layer per triangle, plus sound sources and
- * a camera when loaded from glTF. Immutable once created. */
+/* Per-triangle instance id of a triangle that never moves
+ * (sp_scene_create_with_instances). */
+#define SP_STATIC_INSTANCE 0xFFFFFFFFu
+
+/* A triangle soup with a collision layer per triangle, plus sound sources,
+ * a camera (when loaded from glTF) and moving parts. Immutable once created. */
 typedef struct sp_scene sp_scene;
 
 /* A running simulation of one scene under one configuration. */
 typedef struct sp_simulation sp_simulation;
+
+/* What the host changes while a simulation or visualizer runs: listener,
+ * sources, moving parts. Borrowed from its owner (sp_simulation_scene,
+ * sp_visualizer_scene): live while the owner is, never destroyed by the
+ * caller, used by the owner's thread. */
+typedef struct sp_sound_scene sp_sound_scene;
 
 /* One visible sound indicator: where a ray hit (or left) a surface. */
 typedef struct sp_indicator {
@@ -76,7 +103,7 @@ typedef struct sp_indicator {
   float color[3];      /* the source's linear RGB, each in [0, 1] */
   float intensity;     /* 1 - listener distance / max_distance of the source at emission, [0, 1] */
   uint32_t kind;       /* SP_INDICATOR_KIND_* */
-  uint32_t source_id;  /* index of the source: scene sources first, then config sources */
+  uint32_t source_id;  /* id of the source (scene sources first, then config sources, then added ones) */
   uint32_t bounces;    /* reflections before this indicator */
   uint32_t penetrations; /* completed penetrations before this indicator */
   float path_length;   /* metres travelled by the ray from its source */
@@ -91,12 +118,31 @@ typedef struct sp_stats {
   uint64_t indicators;   /* indicators created (including ones no longer live) */
 } sp_stats;
 
+/* A sound source added at run time (sp_sound_scene_add_source). It plays at
+ * time t when t >= phase and fmod(t - phase, interval) < duration.
+ * Fill it with sp_source_desc_init first: later versions may add fields
+ * that bindings then need not know. */
+typedef struct sp_source_desc {
+  float position[3];    /* metres, world space, finite; default 0, 0, 0 */
+  float color[3];       /* linear RGB, each in [0, 1]; default 1, 1, 1 */
+  const char* category; /* UTF-8 free text, copied; NULL: "sound" (the default) */
+  float max_distance;   /* metres a ray travels (and listener range), >= 0; default 30 */
+  float loudness;       /* E0, initial ray energy, >= 0; default 1 */
+  double duration;      /* seconds of sound per interval, >= 0; default 1 */
+  double interval;      /* seconds between sound starts, > 0; default 1 */
+  double phase;         /* seconds before the first start, >= 0; default 0 */
+} sp_source_desc;
+
 /* The message of the last error returned on the calling thread: one line
  * naming the problem (for files, the path; for config, the key). Never NULL;
  * "" when no call on this thread has failed yet. The text is owned by the
  * library and stays valid until the next failing sp_* call on the same thread.
  * A successful call does not clear it. Thread-safe (thread-local). */
 const char* sp_last_error_message(void) SP_NOEXCEPT;
+
+/* Fills *desc with the library's defaults (see sp_source_desc): a white
+ * source at the origin that plays always. NULL is a no-op. Thread-safe. */
+void sp_source_desc_init(sp_source_desc* desc) SP_NOEXCEPT;
 
 /* Loads a .gltf or .glb scene. path: non-NULL, UTF-8, NUL-terminated.
  * *out: non-NULL; receives a new scene owned by the caller (sp_scene_destroy).
@@ -106,7 +152,8 @@ sp_result sp_scene_load(const char* path, sp_scene** out) SP_NOEXCEPT;
 
 /* Creates a scene from the host's arrays; the arrays are copied and may be
  * freed after the call. The scene has no sources and no camera: give them in
- * the simulation's JSON config ("sources", "listener").
+ * the simulation's JSON config ("sources", "listener") or add sources at run
+ * time. Nothing in it moves (see sp_scene_create_with_instances).
  * vertices: non-NULL, 9 floats per triangle (3 corners x xyz), metres, finite.
  * triangle_count: > 0.
  * triangle_layers: non-NULL, one layer id per triangle, each < layer_count.
@@ -121,11 +168,33 @@ sp_result sp_scene_load(const char* path, sp_scene** out) SP_NOEXCEPT;
 sp_result sp_scene_create(const float* vertices, uint32_t triangle_count, const uint32_t* triangle_layers,
                           const char* const* layer_names, uint32_t layer_count, sp_scene** out) SP_NOEXCEPT;
 
-/* Destroys a scene. NULL is a no-op. Simulations created from the scene do
- * not reference it and may outlive it. Call once per scene. */
-void sp_scene_destroy(sp_scene* scene) SP_NOEXCEPT;
+/* sp_scene_create with moving parts (doors, lifts): triangles grouped into
+ * instances that a running simulation places with
+ * sp_sound_scene_set_instance_transform, relative to the positions given
+ * here (the rest pose). Arguments as sp_scene_create, plus:
+ * triangle_instances: one instance id per triangle, each < instance_count or
+ *   SP_STATIC_INSTANCE (never moves); NULL: every triangle is static.
+ * instance_names: instance_count non-NULL UTF-8 names (for messages and
+ *   tools); may be NULL only when instance_count == 0.
+ * instance_count: number of instances (ids 0 .. instance_count - 1); 0 with
+ *   triangle_instances all SP_STATIC_INSTANCE (or NULL) is sp_scene_create.
+ * Errors: as sp_scene_create; SP_ERROR_INVALID_ARGUMENT (NULL instance_names
+ * or triangle_instances with instance_count > 0, a NULL name),
+ * SP_ERROR_INVALID_SCENE (an instance id out of range, named with its
+ * triangle). Thread-safe. */
+sp_result sp_scene_create_with_instances(const float* vertices, uint32_t triangle_count,
+                                         const uint32_t* triangle_layers, const char* const* layer_names,
+                                         uint32_t layer_count, const uint32_t* triangle_instances,
+                                         const char* const* instance_names, uint32_t instance_count,
+                                         sp_scene** out) SP_NOEXCEPT;
 
-/* Creates a simulation of `scene` (non-NULL, only read during the call).
+/* Destroys a scene. NULL is a no-op (SP_OK). Simulations and visualizers
+ * created from the scene do not reference it and may outlive it.
+ * Errors: SP_ERROR_INVALID_ARGUMENT when `scene` is not live (destroyed
+ * already, or never created). */
+sp_result sp_scene_destroy(sp_scene* scene) SP_NOEXCEPT;
+
+/* Creates a simulation of `scene` (non-NULL, live, only read during the call).
  * config_json: NULL for every default, else a NUL-terminated JSON object with
  *   the keys of the configuration file (README "Configuration (JSON)").
  *   The listener starts at config "listener.position", else the scene's camera;
@@ -133,48 +202,123 @@ void sp_scene_destroy(sp_scene* scene) SP_NOEXCEPT;
  * backend: SP_BACKEND_CPU, SP_BACKEND_GPU or SP_BACKEND_AUTO.
  * *out: non-NULL; receives a new simulation owned by the caller.
  * Errors: SP_ERROR_INVALID_CONFIG (message names the key),
- * SP_ERROR_INVALID_ARGUMENT (no listener, bad source field, unknown backend),
- * SP_ERROR_VULKAN / SP_ERROR_LIMIT_EXCEEDED (GPU backend only).
- * Thread-safe. May take a while: builds the BVH (and the GPU device). */
+ * SP_ERROR_INVALID_ARGUMENT (no listener, bad source field, unknown backend,
+ * scene not live), SP_ERROR_VULKAN / SP_ERROR_LIMIT_EXCEEDED (GPU backend
+ * only). Thread-safe. May take a while: builds the BVH (and the GPU device). */
 sp_result sp_simulation_create(const sp_scene* scene, const char* config_json, sp_backend backend,
                                sp_simulation** out) SP_NOEXCEPT;
 
-/* Destroys a simulation and its resources. NULL is a no-op. Call once, and
- * not while another thread uses the simulation. */
-void sp_simulation_destroy(sp_simulation* simulation) SP_NOEXCEPT;
+/* Destroys a simulation and its resources; its sp_sound_scene stops being
+ * live. NULL is a no-op (SP_OK). Not while another thread uses it.
+ * Errors: SP_ERROR_INVALID_ARGUMENT when `simulation` is not live. */
+sp_result sp_simulation_destroy(sp_simulation* simulation) SP_NOEXCEPT;
 
-/* Moves the listener to (x, y, z) metres, used from the next step on.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL or a non-finite coordinate. */
+/* *out (non-NULL) receives the simulation's sound scene, borrowed: the same
+ * pointer on every call, live until sp_simulation_destroy. Use it from the
+ * thread that steps the simulation. */
+sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) SP_NOEXCEPT;
+
+/* Shorthand for sp_sound_scene_set_listener on the simulation's scene.
+ * Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, or a
+ * non-finite coordinate. */
 sp_result sp_simulation_set_listener(sp_simulation* simulation, float x, float y, float z) SP_NOEXCEPT;
 
-/* Makes source `source_id` (< sp_simulation_source_count) play for
- * duration_seconds (finite, >= 0) from the next step on, regardless of its
- * emission pattern.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL, an unknown id, or a negative or
- * non-finite duration. */
+/* Shorthand for sp_sound_scene_play on the simulation's scene.
+ * Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, an unknown
+ * or removed id, or a negative or non-finite duration. */
 sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, double duration_seconds) SP_NOEXCEPT;
 
 /* Runs the next step (config "dt" seconds of simulated time).
- * Errors: only device failures (SP_ERROR_VULKAN) on the GPU backend. */
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live); device failures
+ * (SP_ERROR_VULKAN) on the GPU backend. */
 sp_result sp_simulation_step(sp_simulation* simulation) SP_NOEXCEPT;
 
-/* *out (non-NULL) receives the number of sources (scene's, then config's);
- * source ids are 0 .. count - 1. */
+/* *out (non-NULL) receives the number of source slots: source ids are
+ * 0 .. count - 1 (scene's, then config's, then added ones); a slot whose
+ * source was removed (or whose one-shot ended) stays counted until an added
+ * source reuses it (sp_sound_scene_has_source tells which are live). */
 sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* out) SP_NOEXCEPT;
 
 /* The indicators still visible (younger than indicator_lifetime), oldest
  * first. *count (non-NULL) receives how many exist; min(*count, capacity)
  * are written to out. out may be NULL only when capacity == 0 (size query).
  * Calling twice between steps gives the same list.
- * Errors: SP_ERROR_INVALID_ARGUMENT (NULL simulation or count, NULL out with
- * capacity > 0); SP_ERROR_VULKAN on a GPU read-back failure. */
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not-live simulation, NULL
+ * count, NULL out with capacity > 0); SP_ERROR_VULKAN on a GPU read-back
+ * failure. */
 sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator* out, uint32_t capacity,
                                         uint32_t* count) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the totals over every step run so far.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL; SP_ERROR_VULKAN on a GPU
- * read-back failure. */
+ * Errors: SP_ERROR_INVALID_ARGUMENT for NULL or a handle not live;
+ * SP_ERROR_VULKAN on a GPU read-back failure. */
 sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) SP_NOEXCEPT;
+
+/* --- Sound scene: run-time changes, through a simulation's or a
+ * visualizer's sp_sound_scene. Each applies from the next step on; on error
+ * nothing changes. Every function fails with SP_ERROR_INVALID_ARGUMENT for a
+ * NULL scene or one whose owner was destroyed. Not thread-safe: call from
+ * the thread that drives the owner. */
+
+/* Moves the listener to (x, y, z) metres (finite). */
+sp_result sp_sound_scene_set_listener(sp_sound_scene* scene, float x, float y, float z) SP_NOEXCEPT;
+
+/* Adds a source described by *desc (non-NULL; every field checked: the
+ * message names the field) and writes its id to *out_id (non-NULL): the
+ * lowest free slot, so ids of removed sources are reused.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (bad field), SP_ERROR_LIMIT_EXCEEDED
+ * (sp_sound_scene_source_capacity sources are live: remove one first). */
+sp_result sp_sound_scene_add_source(sp_sound_scene* scene, const sp_source_desc* desc,
+                                    uint32_t* out_id) SP_NOEXCEPT;
+
+/* Replaces everything about live source `id` with *desc (non-NULL): position,
+ * colour, category, range, loudness and emission pattern.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (unknown or removed id, bad field). */
+sp_result sp_sound_scene_update_source(sp_sound_scene* scene, uint32_t id, const sp_source_desc* desc) SP_NOEXCEPT;
+
+/* Moves live source `id` to (x, y, z) metres (finite).
+ * Errors: SP_ERROR_INVALID_ARGUMENT (unknown or removed id, non-finite). */
+sp_result sp_sound_scene_move_source(sp_sound_scene* scene, uint32_t id, float x, float y, float z) SP_NOEXCEPT;
+
+/* Removes live source `id`: it stops emitting, its indicators already drawn
+ * fade as usual, and its id may be reused by a later add or emit.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (unknown or already removed id). */
+sp_result sp_sound_scene_remove_source(sp_sound_scene* scene, uint32_t id) SP_NOEXCEPT;
+
+/* Makes live source `id` play for duration_seconds (finite, >= 0) from the
+ * next step on, whatever its emission pattern says ("this sound just
+ * started", from the game's audio engine).
+ * Errors: SP_ERROR_INVALID_ARGUMENT (unknown or removed id, bad duration). */
+sp_result sp_sound_scene_play(sp_sound_scene* scene, uint32_t id, double duration_seconds) SP_NOEXCEPT;
+
+/* A one-shot sound: adds a source described by *desc (non-NULL; its
+ * duration, interval and phase are ignored) that plays for duration_seconds
+ * (finite, >= 0) from the next step on and then removes itself. *out_id
+ * (non-NULL) receives its id, valid until the sound ends: after that the id
+ * is free for a later add or emit, so stop using it (a later add may get
+ * it; sp_sound_scene_has_source tells whether it is still live).
+ * Errors: as sp_sound_scene_add_source, plus a bad duration. */
+sp_result sp_sound_scene_emit(sp_sound_scene* scene, const sp_source_desc* desc, double duration_seconds,
+                              uint32_t* out_id) SP_NOEXCEPT;
+
+/* Places moving part `instance` (< sp_sound_scene_instance_count) at the
+ * transform column_major_4x4 (non-NULL, 16 finite floats, column-major as
+ * in glm, GLSL and the glTF spec) applied to its rest pose: a door swings
+ * by a rotation about its hinge. Replaces the previous transform.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (instance out of range, non-finite). */
+sp_result sp_sound_scene_set_instance_transform(sp_sound_scene* scene, uint32_t instance,
+                                                const float column_major_4x4[16]) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives the number of moving parts (instances). */
+sp_result sp_sound_scene_instance_count(const sp_sound_scene* scene, uint32_t* out) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives 1 when `id` is a live source, else 0 (removed,
+ * never added). Any id is accepted. A one-shot stays live until the first
+ * step planned after its sound ended removes it. */
+sp_result sp_sound_scene_has_source(const sp_sound_scene* scene, uint32_t id, int* out) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives how many sources may be live at once. */
+sp_result sp_sound_scene_source_capacity(const sp_sound_scene* scene, uint32_t* out) SP_NOEXCEPT;
 
 #ifdef __cplusplus
 }  /* extern "C" */

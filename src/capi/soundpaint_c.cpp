@@ -1,91 +1,24 @@
-// The C API (include/soundpaint/soundpaint.h) over the C++ library. Every
-// entry point is noexcept: C++ errors become an sp_result plus the calling
-// thread's last error message.
+// The C API (include/soundpaint/soundpaint.h) over the C++ library: scenes
+// and simulations. Every entry point is noexcept: C++ errors become an
+// sp_result plus the calling thread's last error message, and every handle
+// is checked against the live-handle registry before it is touched.
 #include "soundpaint/soundpaint.h"
 
 #include <cmath>
-#include <exception>
 #include <memory>
-#include <new>
 #include <string>
 #include <utility>
 
-#include "soundpaint/config.h"
-#include "soundpaint/result.h"
-#include "soundpaint/scene.h"
-#include "soundpaint/simulation.h"
-
-struct sp_scene {
-  sp::Scene scene;
-};
-
-struct sp_simulation {
-  std::unique_ptr<sp::Simulator> simulator;
-};
+#include "capi/capi_internal.h"
 
 namespace {
 
-thread_local std::string g_last_error;
-
-sp_result to_result(sp::ErrorCode code) {
-  switch (code) {
-    case sp::ErrorCode::InvalidArgument: return SP_ERROR_INVALID_ARGUMENT;
-    case sp::ErrorCode::InvalidScene: return SP_ERROR_INVALID_SCENE;
-    case sp::ErrorCode::InvalidConfig: return SP_ERROR_INVALID_CONFIG;
-    case sp::ErrorCode::Io: return SP_ERROR_IO;
-    case sp::ErrorCode::Vulkan: return SP_ERROR_VULKAN;
-    case sp::ErrorCode::LimitExceeded: return SP_ERROR_LIMIT_EXCEEDED;
-  }
-  return SP_ERROR_INTERNAL;
-}
-
-// Records `message` as the thread's last error; never throws (a failed
-// assignment leaves a shorter fixed message).
-sp_result fail(sp_result code, const char* message) noexcept {
-  try {
-    g_last_error = message;
-  } catch (...) {
-    g_last_error.clear();  // no allocation: keeps the capacity
-  }
-  return code;
-}
-
-[[noreturn]] void throw_error(const sp::Error& error) { throw sp::Exception(error); }
-
-template <class T>
-T unwrap(sp::Result<T>&& result) {
-  if (!result.ok()) throw_error(result.error());
-  return std::move(result).value();
-}
-
-void require(bool condition, const char* function, const char* what) {
-  if (!condition) throw sp::Exception(sp::ErrorCode::InvalidArgument, std::string(function) + ": " + what);
-}
-
-// Runs body() and turns every exception into a result and message.
-template <class Fn>
-sp_result guarded(Fn&& body) noexcept {
-  try {
-    body();
-    return SP_OK;
-  } catch (const sp::Exception& e) {
-    return fail(to_result(e.error().code), e.what());
-  } catch (const std::bad_alloc&) {
-    return fail(SP_ERROR_OUT_OF_MEMORY, "out of memory");
-  } catch (const std::exception& e) {
-    return fail(SP_ERROR_INTERNAL, e.what());
-  } catch (...) {
-    return fail(SP_ERROR_INTERNAL, "unknown internal error");
-  }
-}
-
-std::unique_ptr<sp::Simulator> create_simulator(sp::World world, sp_backend backend) {
-  sp::SimulatorSettings settings;
-  settings.backend = backend == SP_BACKEND_CPU   ? sp::BackendChoice::Cpu
-                     : backend == SP_BACKEND_GPU ? sp::BackendChoice::Gpu
-                                                 : sp::BackendChoice::Auto;
-  return unwrap(sp::create_simulator(std::move(world), settings));
-}
+using sp::capi::guarded;
+using sp::capi::HandleKind;
+using sp::capi::require;
+using sp::capi::require_live;
+using sp::capi::throw_invalid;
+using sp::capi::unwrap;
 
 sp_indicator to_c(const sp::Indicator& in) {
   sp_indicator out{};
@@ -110,84 +43,155 @@ sp_indicator to_c(const sp::Indicator& in) {
   return out;
 }
 
+// The arguments of both scene-from-arrays entry points; the instance arrays
+// are NULL / 0 for sp_scene_create.
+struct SceneArrays {
+  const float* vertices;
+  uint32_t triangle_count;
+  const uint32_t* triangle_layers;
+  const char* const* layer_names;
+  uint32_t layer_count;
+  const uint32_t* triangle_instances;
+  const char* const* instance_names;
+  uint32_t instance_count;
+};
+
+void require_names(const char* const* names, uint32_t count, const char* fn, const char* what) {
+  for (uint32_t i = 0; i < count; ++i)
+    if (names[i] == nullptr) throw_invalid(fn, std::string(what) + "[" + std::to_string(i) + "] is NULL");
+}
+
+[[noreturn]] void throw_scene(const char* fn, const std::string& what) {
+  throw sp::Exception(sp::ErrorCode::InvalidScene, std::string(fn) + ": " + what);
+}
+
+void copy_geometry(const SceneArrays& in, const char* fn, sp::Scene& s) {
+  const std::size_t vertex_count = std::size_t{3} * in.triangle_count;
+  s.vertices.reserve(vertex_count);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const float* p = in.vertices + 3 * v;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw_scene(fn, "vertex " + std::to_string(v) + " (triangle " + std::to_string(v / 3) + ") is not finite");
+    s.vertices.emplace_back(p[0], p[1], p[2]);
+  }
+  s.triangle_layers.assign(in.triangle_layers, in.triangle_layers + in.triangle_count);
+  for (uint32_t t = 0; t < in.triangle_count; ++t)
+    if (s.triangle_layers[t] >= in.layer_count)
+      throw_scene(fn, "triangle " + std::to_string(t) + " has layer id " + std::to_string(s.triangle_layers[t]) +
+                          " but layer_count is " + std::to_string(in.layer_count));
+  s.layer_names.assign(in.layer_names, in.layer_names + in.layer_count);
+}
+
+// Without instances (or with every triangle static) the scene has no moving
+// parts, exactly as sp_scene_create makes it.
+void copy_instances(const SceneArrays& in, const char* fn, sp::Scene& s) {
+  if (in.triangle_instances == nullptr) return;
+  s.triangle_instances.assign(in.triangle_instances, in.triangle_instances + in.triangle_count);
+  for (uint32_t t = 0; t < in.triangle_count; ++t) {
+    const uint32_t instance = s.triangle_instances[t];
+    if (instance != SP_STATIC_INSTANCE && instance >= in.instance_count)
+      throw_scene(fn, "triangle " + std::to_string(t) + " has instance id " + std::to_string(instance) +
+                          " but instance_count is " + std::to_string(in.instance_count) +
+                          " (SP_STATIC_INSTANCE for a static triangle)");
+  }
+  if (in.instance_count == 0) {
+    s.triangle_instances.clear();
+    return;
+  }
+  s.instance_names.assign(in.instance_names, in.instance_names + in.instance_count);
+}
+
+sp_result create_scene(const SceneArrays& in, sp_scene** out, const char* fn) {
+  return guarded([&] {
+    require(in.vertices != nullptr, fn, "vertices is NULL");
+    require(in.triangle_layers != nullptr, fn, "triangle_layers is NULL");
+    require(in.layer_names != nullptr, fn, "layer_names is NULL");
+    require(out != nullptr, fn, "out is NULL");
+    require(in.triangle_count > 0, fn, "triangle_count is 0");
+    require(in.layer_count > 0, fn, "layer_count is 0");
+    require_names(in.layer_names, in.layer_count, fn, "layer_names");
+    if (in.instance_count > 0) {
+      require(in.triangle_instances != nullptr, fn, "triangle_instances is NULL but instance_count > 0");
+      require(in.instance_names != nullptr, fn, "instance_names is NULL but instance_count > 0");
+      require_names(in.instance_names, in.instance_count, fn, "instance_names");
+    }
+    auto scene = std::make_unique<sp_scene>();
+    copy_geometry(in, fn, scene->scene);
+    copy_instances(in, fn, scene->scene);
+    sp::capi::register_handle(HandleKind::Scene, scene.get());
+    *out = scene.release();
+  });
+}
+
 }  // namespace
 
 extern "C" {
-
-const char* sp_last_error_message(void) noexcept { return g_last_error.c_str(); }
 
 sp_result sp_scene_load(const char* path, sp_scene** out) noexcept {
   return guarded([&] {
     require(path != nullptr, "sp_scene_load", "path is NULL");
     require(out != nullptr, "sp_scene_load", "out is NULL");
     auto scene = std::make_unique<sp_scene>(sp_scene{unwrap(sp::load_scene(path))});
+    sp::capi::register_handle(HandleKind::Scene, scene.get());
     *out = scene.release();
   });
 }
 
 sp_result sp_scene_create(const float* vertices, uint32_t triangle_count, const uint32_t* triangle_layers,
                           const char* const* layer_names, uint32_t layer_count, sp_scene** out) noexcept {
-  return guarded([&] {
-    const char* fn = "sp_scene_create";
-    require(vertices != nullptr, fn, "vertices is NULL");
-    require(triangle_layers != nullptr, fn, "triangle_layers is NULL");
-    require(layer_names != nullptr, fn, "layer_names is NULL");
-    require(out != nullptr, fn, "out is NULL");
-    require(triangle_count > 0, fn, "triangle_count is 0");
-    require(layer_count > 0, fn, "layer_count is 0");
-    for (uint32_t i = 0; i < layer_count; ++i)
-      if (layer_names[i] == nullptr)
-        throw sp::Exception(sp::ErrorCode::InvalidArgument,
-                            std::string(fn) + ": layer_names[" + std::to_string(i) + "] is NULL");
-    auto scene = std::make_unique<sp_scene>();
-    sp::Scene& s = scene->scene;
-    const std::size_t vertex_count = std::size_t{3} * triangle_count;
-    s.vertices.reserve(vertex_count);
-    for (std::size_t v = 0; v < vertex_count; ++v) {
-      const float* p = vertices + 3 * v;
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-        throw sp::Exception(sp::ErrorCode::InvalidScene, std::string(fn) + ": vertex " + std::to_string(v) +
-                                                             " (triangle " + std::to_string(v / 3) +
-                                                             ") is not finite");
-      s.vertices.emplace_back(p[0], p[1], p[2]);
-    }
-    s.triangle_layers.assign(triangle_layers, triangle_layers + triangle_count);
-    for (uint32_t t = 0; t < triangle_count; ++t)
-      if (s.triangle_layers[t] >= layer_count)
-        throw sp::Exception(sp::ErrorCode::InvalidScene,
-                            std::string(fn) + ": triangle " + std::to_string(t) + " has layer id " +
-                                std::to_string(s.triangle_layers[t]) + " but layer_count is " +
-                                std::to_string(layer_count));
-    s.layer_names.assign(layer_names, layer_names + layer_count);
-    *out = scene.release();
-  });
+  const SceneArrays in{vertices, triangle_count, triangle_layers, layer_names, layer_count, nullptr, nullptr, 0};
+  return create_scene(in, out, "sp_scene_create");
 }
 
-void sp_scene_destroy(sp_scene* scene) noexcept { delete scene; }
+sp_result sp_scene_create_with_instances(const float* vertices, uint32_t triangle_count,
+                                         const uint32_t* triangle_layers, const char* const* layer_names,
+                                         uint32_t layer_count, const uint32_t* triangle_instances,
+                                         const char* const* instance_names, uint32_t instance_count,
+                                         sp_scene** out) noexcept {
+  const SceneArrays in{vertices,           triangle_count, triangle_layers, layer_names, layer_count,
+                       triangle_instances, instance_names, instance_count};
+  return create_scene(in, out, "sp_scene_create_with_instances");
+}
+
+sp_result sp_scene_destroy(sp_scene* scene) noexcept {
+  return guarded([&] { sp::capi::destroy_handle(HandleKind::Scene, scene, "sp_scene_destroy", "scene"); });
+}
 
 sp_result sp_simulation_create(const sp_scene* scene, const char* config_json, sp_backend backend,
                                sp_simulation** out) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_create";
-    require(scene != nullptr, fn, "scene is NULL");
+    require_live(HandleKind::Scene, scene, fn, "scene");
     require(out != nullptr, fn, "out is NULL");
-    require(backend == SP_BACKEND_CPU || backend == SP_BACKEND_GPU || backend == SP_BACKEND_AUTO, fn,
-            "backend must be SP_BACKEND_CPU, SP_BACKEND_GPU or SP_BACKEND_AUTO");
-    sp::Config config;
-    if (config_json != nullptr) config = unwrap(sp::parse_config(config_json, "config_json"));
-    sp::World world = unwrap(sp::make_world(scene->scene, config));
+    sp::SimulatorSettings settings;
+    settings.backend = sp::capi::backend_choice(backend, fn);
     auto simulation = std::make_unique<sp_simulation>();
-    simulation->simulator = create_simulator(std::move(world), backend);
+    simulation->simulator = unwrap(sp::create_simulator(sp::capi::world_from(*scene, config_json), settings));
+    simulation->sound_scene.scene = &simulation->simulator->scene();
+    sp::capi::register_handle(HandleKind::Simulation, simulation.get(), &simulation->sound_scene);
     *out = simulation.release();
   });
 }
 
-void sp_simulation_destroy(sp_simulation* simulation) noexcept { delete simulation; }
+sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
+  return guarded([&] {
+    sp::capi::destroy_handle(HandleKind::Simulation, simulation, "sp_simulation_destroy", "simulation");
+  });
+}
+
+sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_simulation_scene";
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    require(out != nullptr, fn, "out is NULL");
+    *out = &simulation->sound_scene;
+  });
+}
 
 sp_result sp_simulation_set_listener(sp_simulation* simulation, float x, float y, float z) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_set_listener";
-    require(simulation != nullptr, fn, "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
     require(std::isfinite(x) && std::isfinite(y) && std::isfinite(z), fn, "position is not finite");
     unwrap(simulation->simulator->set_listener(glm::vec3(x, y, z)));
   });
@@ -196,21 +200,20 @@ sp_result sp_simulation_set_listener(sp_simulation* simulation, float x, float y
 sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, double duration_seconds) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_play";
-    require(simulation != nullptr, fn, "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
     const std::size_t count = simulation->simulator->world().sources.size();
     if (source_id >= count)
-      throw sp::Exception(sp::ErrorCode::InvalidArgument, std::string(fn) + ": unknown source id " +
-                                                              std::to_string(source_id) + " (there are " +
-                                                              std::to_string(count) + " sources)");
+      throw_invalid(fn, "unknown source id " + std::to_string(source_id) + " (there are " + std::to_string(count) +
+                            " sources)");
     require(std::isfinite(duration_seconds) && duration_seconds >= 0.0, fn,
             "duration_seconds must be finite and >= 0");
-    unwrap(simulation->simulator->play(source_id, duration_seconds));
+    unwrap(simulation->simulator->play(source_id, duration_seconds));  // also rejects a removed source
   });
 }
 
 sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
   return guarded([&] {
-    require(simulation != nullptr, "sp_simulation_step", "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, "sp_simulation_step", "simulation");
     unwrap(simulation->simulator->step());
   });
 }
@@ -218,7 +221,7 @@ sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
 sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* out) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_source_count";
-    require(simulation != nullptr, fn, "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
     require(out != nullptr, fn, "out is NULL");
     *out = static_cast<uint32_t>(simulation->simulator->world().sources.size());
   });
@@ -228,7 +231,7 @@ sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator*
                                         uint32_t* count) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_live_indicators";
-    require(simulation != nullptr, fn, "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
     require(count != nullptr, fn, "count is NULL");
     require(out != nullptr || capacity == 0, fn, "out is NULL but capacity > 0");
     const std::vector<sp::Indicator> live = unwrap(simulation->simulator->live_indicators());
@@ -243,7 +246,7 @@ sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator*
 sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_stats";
-    require(simulation != nullptr, fn, "simulation is NULL");
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
     require(out != nullptr, fn, "out is NULL");
     const sp::SimulationStats stats = unwrap(simulation->simulator->stats());
     sp_stats result{};
@@ -256,3 +259,4 @@ sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept
 }
 
 }  // extern "C"
+

@@ -1,0 +1,148 @@
+/* soundpaint C API, Vulkan part: the visualizer, which records the
+ * simulation into the host's command buffers and draws the indicators inside
+ * the host's own dynamic-rendering pass, on the host's instance, device and
+ * queues. The C counterpart of include/soundpaint/visualizer.h.
+ *
+ * The conventions of soundpaint.h hold here too (opaque handles checked for
+ * liveness, sp_result plus sp_last_error_message, no exceptions, every
+ * pointer and float checked). In addition:
+ * - soundpaint creates no instance or device and never submits to, waits on
+ *   or idles a queue: the host submits what it records, and synchronises
+ *   the simulation and the draw as it does its own passes.
+ * - The host's Vulkan objects are borrowed for the visualizer's lifetime:
+ *   destroy the visualizer before the device.
+ * - One sp_visualizer (with its sp_sound_scene) must be used by one thread
+ *   at a time, the one recording its command buffers.
+ */
+#ifndef SOUNDPAINT_SOUNDPAINT_VULKAN_H
+#define SOUNDPAINT_SOUNDPAINT_VULKAN_H
+
+#include <vulkan/vulkan.h>
+
+#include "soundpaint/soundpaint.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* soundpaint inside a host's Vulkan renderer. */
+typedef struct sp_visualizer sp_visualizer;
+
+/* The host's Vulkan objects (see sp::HostVulkan). Requirements, checked at
+ * creation (SP_ERROR_VULKAN names what is missing): Vulkan 1.3 with
+ * synchronization2, dynamicRendering and maintenance4 enabled; queue
+ * families with graphics and compute (queue_family) or compute
+ * (compute_queue_family). Fill it with sp_host_vulkan_init first: a zeroed
+ * struct would name queue family 0 as an async compute family. */
+typedef struct sp_host_vulkan {
+  VkInstance instance;                   /* required */
+  VkPhysicalDevice physical_device;      /* required */
+  VkDevice device;                       /* required */
+  /* Family of the queue that runs sp_visualizer_record_draw's command
+   * buffers (graphics and compute), and record_simulation's unless
+   * compute_queue_family is set. Required. */
+  uint32_t queue_family;
+  /* Family of an async compute queue that runs record_simulation's command
+   * buffers; VK_QUEUE_FAMILY_IGNORED (the default): queue_family. */
+  uint32_t compute_queue_family;
+  VkPipelineCache pipeline_cache;        /* optional */
+  const VkAllocationCallbacks* allocator; /* optional, used for every object soundpaint creates */
+  /* Optional: the pNext chain given to vkCreateDevice, so that features are
+   * checked as enabled and not only as supported. */
+  const void* enabled_features;
+} sp_host_vulkan;
+
+/* The attachments of the host's rendering that record_draw draws into. */
+typedef struct sp_draw_target {
+  VkFormat color_format;   /* required: a blendable colour attachment format */
+  VkFormat depth_format;   /* VK_FORMAT_UNDEFINED (default): no depth attachment, indicators not depth-tested */
+  VkFormat stencil_format; /* the rendering's stencil attachment format, if it has one; default UNDEFINED */
+  VkSampleCountFlagBits samples; /* default VK_SAMPLE_COUNT_1_BIT */
+  /* VK_COMPARE_OP_LESS_OR_EQUAL (default) for depth cleared to 1;
+   * GREATER_OR_EQUAL for reversed-Z. */
+  VkCompareOp depth_compare;
+} sp_draw_target;
+
+/* Fill *host / *target (NULL: no-op) with the defaults: null handles,
+ * VK_QUEUE_FAMILY_IGNORED families, UNDEFINED formats, one sample,
+ * LESS_OR_EQUAL. Set the required fields afterwards. Thread-safe. */
+void sp_host_vulkan_init(sp_host_vulkan* host) SP_NOEXCEPT;
+void sp_draw_target_init(sp_draw_target* target) SP_NOEXCEPT;
+
+/* Creates a visualizer of `scene` on the host's device.
+ * host, target: non-NULL, only read during the call (the Vulkan handles they
+ *   name are borrowed until sp_visualizer_destroy).
+ * scene: non-NULL, live, only read during the call.
+ * config_json: as sp_simulation_create (NULL: every default; the listener
+ *   from config "listener.position", else the scene's camera).
+ * backend: SP_BACKEND_GPU (the simulation is compute work recorded into
+ *   record_simulation's command buffer), SP_BACKEND_CPU (it runs on worker
+ *   threads one step ahead and record_simulation uploads finished steps) or
+ *   SP_BACKEND_AUTO (GPU on a hardware GPU, CPU on lavapipe-like devices).
+ * *out: non-NULL; receives a new visualizer owned by the caller.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL pointer, null handle, unset queue
+ * family, bad format, unknown backend, no listener, scene not live),
+ * SP_ERROR_INVALID_CONFIG, SP_ERROR_VULKAN (device below 1.3, missing
+ * feature, named), SP_ERROR_LIMIT_EXCEEDED (a buffer beyond a device limit).
+ * Thread-safe as far as soundpaint goes; Vulkan's rules for the host's
+ * objects still hold (an externally synchronised pipeline cache, say).
+ * Builds the BVH and the pipelines; uploads happen in the first
+ * sp_visualizer_record_simulation. */
+sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,
+                               const char* config_json, sp_backend backend, sp_visualizer** out) SP_NOEXCEPT;
+
+/* Destroys a visualizer and the Vulkan objects it created; its
+ * sp_sound_scene stops being live. The host must first have finished every
+ * command buffer recorded with it (a fence or vkDeviceWaitIdle). NULL is a
+ * no-op (SP_OK). Errors: SP_ERROR_INVALID_ARGUMENT when not live. */
+sp_result sp_visualizer_destroy(sp_visualizer* visualizer) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives the visualizer's sound scene, borrowed: the same
+ * pointer on every call, live until sp_visualizer_destroy. */
+sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives the backend chosen at creation: SP_BACKEND_CPU
+ * or SP_BACKEND_GPU (never AUTO). */
+sp_result sp_visualizer_backend(const sp_visualizer* visualizer, sp_backend* out) SP_NOEXCEPT;
+
+/* Records the frame's simulation into `cmd` (non-NULL, recording, outside
+ * any render pass; submitted by the host to queue_family or
+ * compute_queue_family) for dt_seconds (finite, >= 0) of game time: as many
+ * fixed steps of config "dt" as fit (at most 4 per call), the rest carried
+ * to the next frame. Never waits on the device or on worker threads.
+ * out_steps: may be NULL; else receives the steps recorded (GPU backend) or
+ * handed over (CPU backend) by this call.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL cmd, bad dt),
+ * SP_ERROR_VULKAN. */
+sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBuffer cmd, double dt_seconds,
+                                          uint32_t* out_steps) SP_NOEXCEPT;
+
+/* Records the indicator draw into `cmd` (non-NULL), inside the host's
+ * dynamic rendering whose attachments match the sp_draw_target, after the
+ * host drew its depth, in a command buffer submitted after the one holding
+ * the last record_simulation. view, projection: non-NULL, 16 finite floats
+ * each, column-major, as the host's own draws use them (Vulkan clip space).
+ * area: NULL to use the viewport and scissor set in `cmd`; else both are set
+ * to it (non-empty). Binds its own pipeline, descriptor set and push
+ * constants: rebind yours afterwards.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL cmd or matrix,
+ * non-finite matrix, empty area, no record_simulation recorded yet),
+ * SP_ERROR_VULKAN. */
+sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                    const float projection[16], const VkRect2D* area) SP_NOEXCEPT;
+
+/* Blocks until the CPU backend's step in progress (if any) is finished, so
+ * that the next record_simulation hands it over. For loading screens,
+ * shutdown and tests; never needed in a frame. No-op for the GPU backend.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live). */
+sp_result sp_visualizer_wait(sp_visualizer* visualizer) SP_NOEXCEPT;
+
+/* *out (non-NULL) receives the steps whose indicators record_draw draws
+ * (recorded for the GPU backend, finished and handed over for the CPU one). */
+sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) SP_NOEXCEPT;
+
+#ifdef __cplusplus
+}  /* extern "C" */
+#endif
+
+#endif /* SOUNDPAINT_SOUNDPAINT_VULKAN_H */

@@ -1,0 +1,106 @@
+// What the C API's translation units share: the handle structs, the live
+// handle registry, and the guard that turns every C++ error into an
+// sp_result plus the thread's last error message.
+#pragma once
+
+#include <memory>
+#include <new>
+#include <string>
+#include <utility>
+
+#include "soundpaint/config.h"
+#include "soundpaint/result.h"
+#include "soundpaint/scene.h"
+#include "soundpaint/simulation.h"
+#include "soundpaint/soundpaint.h"
+
+struct sp_scene {
+  sp::Scene scene;
+};
+
+// Borrowed from a simulation or visualizer, which keeps it as a member: its
+// address is stable and it is registered and unregistered with its owner.
+struct sp_sound_scene {
+  sp::SoundScene* scene = nullptr;  // the owner's
+};
+
+struct sp_simulation {
+  std::unique_ptr<sp::Simulator> simulator;
+  sp_sound_scene sound_scene;
+};
+
+namespace sp::capi {
+
+// Records `message` as the thread's last error and returns `code`; never throws.
+sp_result fail(sp_result code, const char* message) noexcept;
+sp_result to_result(ErrorCode code) noexcept;
+
+[[noreturn]] inline void throw_error(const Error& error) { throw Exception(error); }
+
+template <class T>
+T unwrap(Result<T>&& result) {
+  if (!result.ok()) throw_error(result.error());
+  return std::move(result).value();
+}
+
+[[noreturn]] inline void throw_invalid(const char* function, const std::string& what) {
+  throw Exception(ErrorCode::InvalidArgument, std::string(function) + ": " + what);
+}
+
+inline void require(bool condition, const char* function, const char* what) {
+  if (!condition) throw_invalid(function, what);
+}
+
+// Runs body() and turns every exception into a result and message.
+template <class Fn>
+sp_result guarded(Fn&& body) noexcept {
+  try {
+    body();
+    return SP_OK;
+  } catch (const Exception& e) {
+    return fail(to_result(e.error().code), e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(SP_ERROR_OUT_OF_MEMORY, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(SP_ERROR_INTERNAL, e.what());
+  } catch (...) {
+    return fail(SP_ERROR_INTERNAL, "unknown internal error");
+  }
+}
+
+// --- Live handles ---
+// Each kind has its own set, so a sound scene that is a simulation's member
+// never collides with another kind of handle at the same address.
+enum class HandleKind { Scene, Simulation, Visualizer, SoundScene };
+inline constexpr int kHandleKinds = 4;
+
+// Makes `handle` live, with the sound scene it owns (if any) live with it.
+// Throws std::bad_alloc, registering nothing.
+void register_handle(HandleKind kind, const void* handle, const sp_sound_scene* owned = nullptr);
+// Makes `handle` and its owned sound scene not live; false when `handle`
+// was not live (nothing changes). Only the address is used, never read.
+bool unregister_handle(HandleKind kind, const void* handle);
+bool is_live(HandleKind kind, const void* handle);
+
+// Throws InvalidArgument unless `handle` is non-NULL and live; `what` names
+// the parameter ("simulation").
+void require_live(HandleKind kind, const void* handle, const char* function, const char* what);
+
+// The destroy protocol: NULL is a no-op, a handle not live an error,
+// otherwise unregister, then delete.
+template <class T>
+void destroy_handle(HandleKind kind, T* handle, const char* function, const char* what) {
+  if (handle == nullptr) return;
+  if (!unregister_handle(kind, handle))
+    throw_invalid(function, std::string(what) + " handle is not live (destroyed or never created)");
+  delete handle;
+}
+
+// The backend, checked (the enum comes from C and may hold anything).
+BackendChoice backend_choice(sp_backend backend, const char* function);
+
+// config_json (NULL: defaults) and scene resolved into a World, as both
+// sp_simulation_create and sp_visualizer_create start.
+World world_from(const sp_scene& scene, const char* config_json);
+
+}  // namespace sp::capi

@@ -1,0 +1,177 @@
+// The C API's visualizer (include/soundpaint/soundpaint_vulkan.h) over
+// sp::Visualizer: the C structs mirrored into the C++ ones, the handle made
+// and checked like a simulation's.
+#include "soundpaint/soundpaint_vulkan.h"
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "capi/capi_internal.h"
+#include "soundpaint/visualizer.h"
+
+struct sp_visualizer {
+  std::unique_ptr<sp::Visualizer> visualizer;
+  sp_sound_scene sound_scene;
+};
+
+namespace {
+
+using sp::capi::guarded;
+using sp::capi::HandleKind;
+using sp::capi::require;
+using sp::capi::require_live;
+using sp::capi::unwrap;
+
+sp::HostVulkan to_cpp(const sp_host_vulkan& in) {
+  sp::HostVulkan out;
+  out.instance = in.instance;
+  out.physical_device = in.physical_device;
+  out.device = in.device;
+  out.queue_family = in.queue_family;
+  out.compute_queue_family = in.compute_queue_family;
+  out.pipeline_cache = in.pipeline_cache;
+  out.allocator = in.allocator;
+  out.enabled_features = in.enabled_features;
+  return out;
+}
+
+sp::DrawTarget to_cpp(const sp_draw_target& in) {
+  sp::DrawTarget out;
+  out.color_format = in.color_format;
+  out.depth_format = in.depth_format;
+  out.stencil_format = in.stencil_format;
+  out.samples = in.samples;
+  out.depth_compare = in.depth_compare;
+  return out;
+}
+
+// A column-major matrix from C, NULL and non-finite values rejected here so
+// that the message names the parameter.
+glm::mat4 to_matrix(const float* m, const char* fn, const char* what) {
+  if (m == nullptr) sp::capi::throw_invalid(fn, std::string(what) + " is NULL");
+  for (int k = 0; k < 16; ++k)
+    if (!std::isfinite(m[k]))
+      sp::capi::throw_invalid(fn, std::string(what) + "[" + std::to_string(k) + "] is not finite");
+  return glm::make_mat4(m);
+}
+
+sp::Visualizer& visualizer_of(const sp_visualizer* visualizer, const char* fn) {
+  require_live(HandleKind::Visualizer, visualizer, fn, "visualizer");
+  return *visualizer->visualizer;
+}
+
+}  // namespace
+
+extern "C" {
+
+void sp_host_vulkan_init(sp_host_vulkan* host) noexcept {
+  if (host == nullptr) return;
+  const sp::HostVulkan defaults;
+  sp_host_vulkan out{};
+  out.instance = defaults.instance;
+  out.physical_device = defaults.physical_device;
+  out.device = defaults.device;
+  out.queue_family = defaults.queue_family;
+  out.compute_queue_family = defaults.compute_queue_family;
+  out.pipeline_cache = defaults.pipeline_cache;
+  out.allocator = defaults.allocator;
+  out.enabled_features = defaults.enabled_features;
+  *host = out;
+}
+
+void sp_draw_target_init(sp_draw_target* target) noexcept {
+  if (target == nullptr) return;
+  const sp::DrawTarget defaults;
+  sp_draw_target out{};
+  out.color_format = defaults.color_format;
+  out.depth_format = defaults.depth_format;
+  out.stencil_format = defaults.stencil_format;
+  out.samples = defaults.samples;
+  out.depth_compare = defaults.depth_compare;
+  *target = out;
+}
+
+sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,
+                               const char* config_json, sp_backend backend, sp_visualizer** out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_create";
+    require(host != nullptr, fn, "host is NULL");
+    require(target != nullptr, fn, "target is NULL");
+    require_live(HandleKind::Scene, scene, fn, "scene");
+    require(out != nullptr, fn, "out is NULL");
+    sp::VisualizerSettings settings;
+    settings.backend = sp::capi::backend_choice(backend, fn);
+    auto visualizer = std::make_unique<sp_visualizer>();
+    visualizer->visualizer = unwrap(
+        sp::Visualizer::create(to_cpp(*host), to_cpp(*target), sp::capi::world_from(*scene, config_json), settings));
+    visualizer->sound_scene.scene = &visualizer->visualizer->scene();
+    sp::capi::register_handle(HandleKind::Visualizer, visualizer.get(), &visualizer->sound_scene);
+    *out = visualizer.release();
+  });
+}
+
+sp_result sp_visualizer_destroy(sp_visualizer* visualizer) noexcept {
+  return guarded([&] {
+    sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, "sp_visualizer_destroy", "visualizer");
+  });
+}
+
+sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_scene";
+    require_live(HandleKind::Visualizer, visualizer, fn, "visualizer");
+    require(out != nullptr, fn, "out is NULL");
+    *out = &visualizer->sound_scene;
+  });
+}
+
+sp_result sp_visualizer_backend(const sp_visualizer* visualizer, sp_backend* out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_backend";
+    const sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(out != nullptr, fn, "out is NULL");
+    *out = v.backend() == sp::Backend::Gpu ? SP_BACKEND_GPU : SP_BACKEND_CPU;
+  });
+}
+
+sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBuffer cmd, double dt_seconds,
+                                          uint32_t* out_steps) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_record_simulation";
+    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
+    require(std::isfinite(dt_seconds) && dt_seconds >= 0.0, fn, "dt_seconds must be finite and >= 0");
+    const std::uint32_t steps = unwrap(v.record_simulation(cmd, dt_seconds));
+    if (out_steps != nullptr) *out_steps = steps;
+  });
+}
+
+sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                    const float projection[16], const VkRect2D* area) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_record_draw";
+    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
+    const glm::mat4 view_matrix = to_matrix(view, fn, "view");
+    const glm::mat4 projection_matrix = to_matrix(projection, fn, "projection");
+    unwrap(v.record_draw(cmd, view_matrix, projection_matrix, area));
+  });
+}
+
+sp_result sp_visualizer_wait(sp_visualizer* visualizer) noexcept {
+  return guarded([&] { unwrap(visualizer_of(visualizer, "sp_visualizer_wait").wait_for_simulation()); });
+}
+
+sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_steps_run";
+    const sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(out != nullptr, fn, "out is NULL");
+    *out = v.steps_run();
+  });
+}
+
+}  // extern "C"
