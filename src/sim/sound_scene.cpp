@@ -62,16 +62,16 @@ Result<bool> SoundScene::set_listener(glm::vec3 position) {
 Result<std::uint32_t> SoundScene::add_source(const SourceDesc& source) { return add_slot("add_source", source); }
 
 Result<std::uint32_t> SoundScene::add_slot(const char* what, const SourceDesc& source) {
-  auto checked = capture_errors([&] {
-    check_source(source, world_.sources.size());
-    return true;
-  });
-  if (!checked) return invalid(std::string(what) + ": " + checked.error().message);
   if (active_count_ >= capacity_)
     return Error{ErrorCode::LimitExceeded, std::string(what) + ": all " + std::to_string(capacity_) +
                                                " source slots are in use; remove one first", 0};
   const auto free_slot = std::find(world_.source_active.begin(), world_.source_active.end(), false);
   const auto id = static_cast<std::uint32_t>(free_slot - world_.source_active.begin());
+  auto checked = capture_errors([&] {
+    check_source(source, id);  // names the id the source would get
+    return true;
+  });
+  if (!checked) return invalid(std::string(what) + ": " + checked.error().message);
   if (id == world_.sources.size()) {
     world_.sources.push_back(source);
     world_.source_active.push_back(true);
@@ -94,7 +94,14 @@ Result<bool> SoundScene::update_source(std::uint32_t id, const SourceDesc& sourc
     return true;
   });
   if (!checked) return invalid("update_source: " + checked.error().message);
+  const SourceDesc previous = world_.sources[id];
   world_.sources[id] = source;
+  if (one_shot_[id]) {
+    // A one-shot keeps sounding by its window only, never by a pattern.
+    world_.sources[id].duration = previous.duration;
+    world_.sources[id].interval = previous.interval;
+    world_.sources[id].phase = previous.phase;
+  }
   return true;
 }
 

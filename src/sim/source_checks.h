@@ -9,7 +9,8 @@
 namespace sp {
 
 // Throws sp::Exception(InvalidArgument) naming source `id` and the field:
-// non-finite position or colour, negative range or loudness, interval <= 0.
+// non-finite position, colour outside [0, 1], negative range or loudness,
+// interval <= 0.
 void check_source(const SourceDesc& source, std::size_t id);
 
 }  // namespace sp

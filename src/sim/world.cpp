@@ -2,13 +2,12 @@
 #include <cmath>
 #include <string>
 
+#include "core/finite.h"
 #include "sim/source_checks.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
 namespace {
-
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void check_scene(const Scene& scene) {
   const std::string name = scene.path.empty() ? std::string("scene") : scene.path.string();
@@ -22,7 +21,7 @@ void check_scene(const Scene& scene) {
       fail("triangle " + std::to_string(i) + " has layer id " + std::to_string(scene.triangle_layers[i]) +
            " but there are only " + std::to_string(scene.layer_names.size()) + " layers");
   for (std::size_t i = 0; i < scene.vertices.size(); ++i)
-    if (!finite(scene.vertices[i])) fail("vertex " + std::to_string(i) + " is not finite");
+    if (!all_finite(scene.vertices[i])) fail("vertex " + std::to_string(i) + " is not finite");
   if (!scene.triangle_instances.empty()) {
     if (scene.triangle_instances.size() != scene.triangle_count())
       fail("triangle_instances (" + std::to_string(scene.triangle_instances.size()) +
@@ -42,8 +41,9 @@ void check_source(const SourceDesc& s, std::size_t id) {
   auto fail = [&](const std::string& what) {
     throw Exception(ErrorCode::InvalidArgument, "source " + std::to_string(id) + ": " + what);
   };
-  if (!finite(s.position)) fail("position is not finite");
-  if (!finite(s.color)) fail("color is not finite");
+  if (!all_finite(s.position)) fail("position is not finite");
+  for (int c = 0; c < 3; ++c)
+    if (!(s.color[c] >= 0.0f && s.color[c] <= 1.0f)) fail("color components must be in [0, 1]");
   if (!(s.max_distance >= 0.0f) || !std::isfinite(s.max_distance)) fail("max_distance must be finite and >= 0");
   if (!(s.loudness >= 0.0f) || !std::isfinite(s.loudness)) fail("loudness must be finite and >= 0");
   if (!(s.interval > 0.0) || !std::isfinite(s.interval)) fail("interval must be finite and > 0");
@@ -77,7 +77,7 @@ void check_config(const Config& c) {
     if (!(layer.attenuation >= 0.0f) || !std::isfinite(layer.attenuation))
       fail("layers." + name + ".attenuation must be finite and >= 0");
   }
-  if (c.listener_position && !finite(*c.listener_position)) fail("listener.position is not finite");
+  if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
 }
 
 }  // namespace
