@@ -27,7 +27,7 @@ start_all=$SECONDS
 
 echo "== building into $BUILD (Release)"
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target bench_step bench_rays bench_draw
+cmake --build "$BUILD" -j"$(nproc)" --target bench_step bench_rays bench_draw bench_embed
 python3 scenes/generate_scenes.py --big-level "$BUILD/scenes"
 mkdir -p "$RAW"
 BIG="$BUILD/scenes/level_big.gltf"
@@ -54,6 +54,10 @@ run rays "$BUILD/bench/bench_rays" --scenes "scenes/level.gltf,$BIG,gen:10000,ge
 
 # The indicator pass alone (issue 4): 20k and 200k indicators at 1280x720.
 run draw "$BUILD/bench/bench_draw" --counts 20000,200000 --width 1280 --height 720 --runs 9 --warmup 3
+
+# The integration module (issue 6): render-thread cost of the record calls,
+# and refitting a moving door on the level and on a 250k-triangle level.
+run embed "$BUILD/bench/bench_embed" --scene scenes/level.gltf --frames 600 --budget 500 --big 250000
 
 if command -v gnuplot >/dev/null; then
   echo "== plots"
