@@ -123,7 +123,8 @@ class SoundScene {
   Result<bool> set_instance_transform(std::uint32_t instance, const glm::mat4& transform);
   std::uint32_t instance_count() const { return static_cast<std::uint32_t>(world_.instance_names.size()); }
 
-  // --- Used by the backends ---
+  // --- Used by the backends; a host never calls these (on a visualizer's
+  // scene, update_geometry would race with the CPU backend's worker) ---
   // The plan of step `step`: playing sources and their rays. Ends one-shot
   // sources whose sound is over. Steps are planned in increasing order.
   void plan(std::uint64_t step, StepPlan& out);

@@ -91,7 +91,9 @@ class Visualizer {
   // `dt` seconds of game time: as many fixed steps of config.dt as fit
   // (at most max_steps_per_frame), the rest carried to the next frame.
   // Never waits on the device or on worker threads. Returns the steps
-  // recorded (Gpu) or handed over (Cpu) by this call.
+  // recorded (Gpu) or handed over (Cpu) by this call; the CPU backend
+  // starts at most one step per call. After an error, discard `cmd` and
+  // recreate the visualizer (arguments are checked before recording).
   virtual Result<std::uint32_t> record_simulation(VkCommandBuffer cmd, double dt) = 0;
 
   // Records the indicator draw into `cmd`, inside the host's dynamic

@@ -52,16 +52,25 @@ class CpuVisualizer final : public VisualizerBase {
                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       std::uint32_t handed = 0;
       if (!recorded_) upload_draw_args(cmd);
-      if (const CpuStepOutput* finished = worker_.poll()) {
+      const CpuStepOutput* finished = nullptr;
+      try {
+        finished = worker_.poll();
+      } catch (...) {
+        steps_run_ = running_step_ + 1;  // that step is lost; later numbering stays right
+        throw;
+      }
+      if (finished != nullptr) {
         upload_step(cmd, finished->indicators);
         worker_.release();
-        steps_run_ += 1;
+        steps_run_ = running_step_ + 1;
         handed = 1;
       }
       if (due_ > 0 && worker_.idle()) start_next_step();
-      // RAW: the uploads reach the indicator draw.
+      // RAW: the uploads reach the indicator draw. On a compute-only queue
+      // only the indirect stage exists; the host's semaphore carries the rest.
       vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, readers,
-                         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                         VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT |
+                             (simulation_on_graphics_queue_ ? VK_ACCESS_2_SHADER_STORAGE_READ_BIT : VK_ACCESS_2_NONE));
       recorded_ = true;
       return handed;
     });
@@ -85,6 +94,7 @@ class CpuVisualizer final : public VisualizerBase {
     StepPlan plan;
     scene_.plan(next_step_, plan);
     worker_.start(scene_.world().bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
+    running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
   }
@@ -121,6 +131,7 @@ class CpuVisualizer final : public VisualizerBase {
   std::uint64_t pushed_ = 0;     // indicators ever appended to the ring
   std::uint64_t steps_run_ = 0;  // steps handed over
   std::uint64_t next_step_ = 0;  // step the worker runs next
+  std::uint64_t running_step_ = 0;  // step the worker runs or ran last
   std::uint32_t due_ = 0;        // steps due but not started
   bool recorded_ = false;
 };

@@ -21,7 +21,10 @@ class FrameClock {
     const double due = std::floor(carried_ / step_seconds_ + 1e-9);
     const auto steps = static_cast<std::uint32_t>(std::min(due, static_cast<double>(max_steps_)));
     carried_ = std::max(0.0, carried_ - static_cast<double>(steps) * step_seconds_);
-    carried_ = std::min(carried_, step_seconds_);
+    // Capped: keep only the fraction of a step, so the frame after a hitch
+    // runs no extra step either.
+    const double whole = std::floor(carried_ / step_seconds_ + 1e-9);
+    carried_ = std::max(0.0, carried_ - whole * step_seconds_);
     return steps;
   }
 

@@ -24,15 +24,31 @@ bool format_has(VkPhysicalDevice device, VkFormat format, VkFormatFeatureFlags f
   return (properties.optimalTilingFeatures & feature) != 0;
 }
 
+bool has_depth_aspect(VkFormat f) {
+  return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
+         f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+bool has_stencil_aspect(VkFormat f) {
+  return f == VK_FORMAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT ||
+         f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
 Result<bool> check_target(VkPhysicalDevice device, const DrawTarget& target) {
   if (target.color_format == VK_FORMAT_UNDEFINED) return invalid("DrawTarget: color_format must be set");
   if (!format_has(device, target.color_format, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
     return invalid("DrawTarget: color format " + std::to_string(target.color_format) +
                    " cannot be a blended colour attachment on this device");
   if (target.depth_format != VK_FORMAT_UNDEFINED &&
-      !format_has(device, target.depth_format, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+      (!has_depth_aspect(target.depth_format) ||
+       !format_has(device, target.depth_format, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)))
     return invalid("DrawTarget: depth format " + std::to_string(target.depth_format) +
                    " is not a depth attachment format on this device");
+  if (target.stencil_format != VK_FORMAT_UNDEFINED &&
+      (!has_stencil_aspect(target.stencil_format) ||
+       !format_has(device, target.stencil_format, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)))
+    return invalid("DrawTarget: stencil format " + std::to_string(target.stencil_format) +
+                   " is not a stencil attachment format on this device");
   const VkSampleCountFlagBits s = target.samples;
   if (s == 0 || (s & (s - 1)) != 0 || s > VK_SAMPLE_COUNT_64_BIT)
     return invalid("DrawTarget: samples must be one VkSampleCountFlagBits value");

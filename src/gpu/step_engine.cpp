@@ -48,8 +48,14 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  if (!uploaded_) record_initial_uploads(cmd);
+  const bool first = !uploaded_;
+  if (first) record_initial_uploads(cmd);
   const BvhChanges changes = scene.update_geometry();
+  if (first && !(changes.nodes.empty() && changes.triangles.empty())) {
+    // WAW: the rest pose's copy lands before the moved parts overwrite it.
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  }
   record_geometry_changes(cmd, scene.world(), changes);
 
   for (std::uint32_t i = 0; i < count; ++i) {
