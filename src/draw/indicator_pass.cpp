@@ -8,9 +8,9 @@
 namespace sp::draw {
 
 IndicatorPass::IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format)
-    : IndicatorPass(context, IndicatorTarget{color_format, depth_format}) {}
+    : IndicatorPass(context, DrawTarget{color_format, depth_format}) {}
 
-IndicatorPass::IndicatorPass(const vk::Context& context, const IndicatorTarget& target)
+IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& target)
     : device_(context.device()), bindings_(context, 1, "indicator pass bindings") {
   GraphicsPipelineDesc desc;
   desc.vertex_spirv = sp_spirv_indicator_vert;

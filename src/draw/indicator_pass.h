@@ -11,6 +11,7 @@
 #include "draw/graphics_pipeline.h"
 #include "draw/view_camera.h"
 #include "gpu/gpu_simulator.h"
+#include "soundpaint/visualizer.h"
 #include "vk/compute_pipeline.h"
 #include "vk/context.h"
 
@@ -23,20 +24,12 @@ struct IndicatorClock {
   float lifetime = 1.0f;           // indicator_lifetime, seconds (> 0)
 };
 
-// The attachments of the rendering the pass draws into.
-struct IndicatorTarget {
-  VkFormat color_format = VK_FORMAT_UNDEFINED;
-  VkFormat depth_format = VK_FORMAT_UNDEFINED;    // UNDEFINED: none, no depth test
-  VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if any
-  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-  VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
-};
-
 class IndicatorPass {
  public:
   // Throws sp::Exception.
   IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format);
-  IndicatorPass(const vk::Context& context, const IndicatorTarget& target);
+  // Into a host's rendering with the attachments `target` describes.
+  IndicatorPass(const vk::Context& context, const DrawTarget& target);
 
   // Points the pass at `indicators`' ring. Call before recording each frame
   // that draws them, and never while a frame using the pass is pending (a

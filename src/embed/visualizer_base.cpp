@@ -9,16 +9,6 @@
 namespace sp::embed {
 namespace {
 
-draw::IndicatorTarget indicator_target(const DrawTarget& target) {
-  draw::IndicatorTarget t;
-  t.color_format = target.color_format;
-  t.depth_format = target.depth_format;
-  t.stencil_format = target.stencil_format;
-  t.samples = target.samples;
-  t.depth_compare = target.depth_compare;
-  return t;
-}
-
 Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
 
 }  // namespace
@@ -29,7 +19,7 @@ VisualizerBase::VisualizerBase(std::unique_ptr<vk::Context> context, const DrawT
       scene_(std::move(world)),
       clock_(scene_.world().config.dt, settings.max_steps_per_frame),
       simulation_on_graphics_queue_(simulation_on_graphics_queue),
-      pass_(*context_, indicator_target(target)) {}
+      pass_(*context_, target) {}
 
 Result<bool> VisualizerBase::check_simulation_args(VkCommandBuffer cmd, double dt) const {
   if (cmd == VK_NULL_HANDLE) return invalid("record_simulation: the command buffer is VK_NULL_HANDLE");

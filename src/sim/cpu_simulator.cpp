@@ -37,13 +37,7 @@ class CpuSimulator final : public Simulator {
       runner_.run(scene_.world().bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_);
       ring_.push(last_.indicators);
 
-      for (std::size_t l = 0; l < totals_.layers.size(); ++l) {
-        const LayerCounters& add = last_.counters.layers[l];
-        totals_.layers[l].hits += add.hits;
-        totals_.layers[l].reflections += add.reflections;
-        totals_.layers[l].penetrations += add.penetrations;
-        totals_.layers[l].backcast_misses += add.backcast_misses;
-      }
+      for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
       totals_.steps += 1;
       totals_.casts += last_.counters.casts;
       totals_.max_casts_per_step = std::max(totals_.max_casts_per_step, last_.counters.casts);

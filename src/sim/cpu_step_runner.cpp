@@ -45,12 +45,7 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   out.counters.layers.assign(layer_count_, LayerCounters{});
   for (const auto& counters : worker_counters_) {
     out.counters.casts += counters.casts;
-    for (std::size_t l = 0; l < layer_count_; ++l) {
-      out.counters.layers[l].hits += counters.layers[l].hits;
-      out.counters.layers[l].reflections += counters.layers[l].reflections;
-      out.counters.layers[l].penetrations += counters.layers[l].penetrations;
-      out.counters.layers[l].backcast_misses += counters.layers[l].backcast_misses;
-    }
+    for (std::size_t l = 0; l < layer_count_; ++l) accumulate(out.counters.layers[l], counters.layers[l]);
   }
 }
 

@@ -13,6 +13,14 @@
 
 namespace sp {
 
+// Adds `more` into `into`, field by field.
+inline void accumulate(LayerCounters& into, const LayerCounters& more) {
+  into.hits += more.hits;
+  into.reflections += more.reflections;
+  into.penetrations += more.penetrations;
+  into.backcast_misses += more.backcast_misses;
+}
+
 // Per-worker counters, summed after the step (integer sums: order-free).
 struct TraceCounters {
   std::uint64_t casts = 0;
