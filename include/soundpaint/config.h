@@ -20,6 +20,10 @@ namespace sp {
 struct LayerProperties {
   float reflect_probability = 0.8f;  // rho_ref in [0, 1]: chance a hit reflects rather than penetrates
   float attenuation = 2.0f;          // alpha_layer >= 0: energy lost per metre travelled inside the material
+  // t >= 0, metres. 0: the layer's triangles bound closed solids. > 0: each
+  // triangle is a thin sheet of this thickness (a pane, a cloth, a door made
+  // of one quad), two-sided, crossed on the spot (docs/model.md, "Sheets").
+  float sheet_thickness = 0.0f;
 };
 
 // A sound source (SPEC 1.1). It plays at time t when t >= phase and

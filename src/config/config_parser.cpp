@@ -34,20 +34,25 @@ struct KeyReader {
 struct LayerEntry {
   std::optional<float> reflect_probability;
   std::optional<float> attenuation;
+  std::optional<float> sheet_thickness;
 
   LayerProperties over(const LayerProperties& base) const {
-    return {reflect_probability.value_or(base.reflect_probability), attenuation.value_or(base.attenuation)};
+    return {reflect_probability.value_or(base.reflect_probability), attenuation.value_or(base.attenuation),
+            sheet_thickness.value_or(base.sheet_thickness)};
   }
 };
 
 LayerEntry read_layer_entry(const json& value, const JsonPath& at) {
-  const auto& object = expect_object(value, at, {"reflect_probability", "attenuation"});
+  const auto& object = expect_object(value, at, {"reflect_probability", "attenuation", "sheet_thickness"});
   LayerEntry entry;
   if (const auto it = object.find("reflect_probability"); it != object.end()) {
     entry.reflect_probability = read_float(it->second, at.key("reflect_probability"), kUnitInterval);
   }
   if (const auto it = object.find("attenuation"); it != object.end()) {
     entry.attenuation = read_float(it->second, at.key("attenuation"), kNonNegative);
+  }
+  if (const auto it = object.find("sheet_thickness"); it != object.end()) {
+    entry.sheet_thickness = read_float(it->second, at.key("sheet_thickness"), kNonNegative);
   }
   return entry;
 }
