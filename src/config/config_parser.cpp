@@ -1,14 +1,11 @@
 // JSON configuration (SPEC section 2) -> sp::Config, with strict validation:
 // unknown keys, wrong types, non-finite numbers and out-of-range values are
 // errors whose one-line message names the origin and the key path.
-#include <cerrno>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +13,7 @@
 #include "config/json_fields.h"
 #include "config/layer_names.h"
 #include "config/source_json.h"
+#include "core/regular_file.h"
 #include "soundpaint/config.h"
 
 namespace sp {
@@ -157,20 +155,17 @@ Config read_config(const json& root, std::string_view origin) {
   throw Exception(ErrorCode::Io, origin + ": " + what);
 }
 
+// Configs are hand-written settings: a few kilobytes, a few megabytes with
+// thousands of sources. The cap refuses a huge file before reading it.
+constexpr std::uint64_t kMaxConfigFileBytes = 64ull << 20;
+
 std::string read_text_file(const std::filesystem::path& path, const std::string& origin) {
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored)) fail_io(origin, "cannot read config file: it is a directory");
-  errno = 0;
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    // std::filebuf opens with fopen(), which sets errno on failure.
-    const int error = errno;
-    fail_io(origin, error != 0 ? "cannot open config file: " + std::generic_category().message(error)
-                               : "cannot open config file");
+  try {
+    const std::vector<unsigned char> bytes = read_regular_file(path, kMaxConfigFileBytes, ErrorCode::Io);
+    return std::string(bytes.begin(), bytes.end());
+  } catch (const Exception& e) {
+    fail_io(origin, "cannot read config file: " + e.error().message);
   }
-  std::string text(std::istreambuf_iterator<char>(file), {});
-  if (file.bad()) fail_io(origin, "cannot read config file");
-  return text;
 }
 
 }  // namespace

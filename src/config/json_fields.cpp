@@ -45,6 +45,39 @@ std::string escape_for_message(std::string_view text) {
   return out;
 }
 
+// Appends `value` in compact JSON to `out`, stopping once `out` is longer
+// than `limit`: a huge value costs no more than its first few elements, and
+// as every level writes at least one character first, the recursion is at
+// most `limit` deep whatever the value's nesting.
+void append_bounded(const json& value, std::string& out, std::size_t limit) {
+  if (out.size() > limit) return;
+  const auto dump = [](const json& scalar) {
+    return scalar.dump(-1, ' ', /*ensure_ascii=*/true, json::error_handler_t::replace);
+  };
+  if (value.is_object()) {
+    out += '{';
+    for (const auto& [key, element] : value.get_ref<const json::object_t&>()) {
+      if (out.size() > limit) return;
+      if (out.back() != '{') out += ',';
+      out += dump(json(key.substr(0, limit))) + ':';
+      append_bounded(element, out, limit);
+    }
+    out += '}';
+  } else if (value.is_array()) {
+    out += '[';
+    for (const json& element : value.get_ref<const json::array_t&>()) {
+      if (out.size() > limit) return;
+      if (out.back() != '[') out += ',';
+      append_bounded(element, out, limit);
+    }
+    out += ']';
+  } else if (value.is_string()) {
+    out += dump(json(value.get_ref<const std::string&>().substr(0, limit)));
+  } else {
+    out += dump(value);
+  }
+}
+
 std::string show_value(const json& value) {
   // nlohmann writes non-finite floats as "null", which would mislead.
   if (value.is_number_float()) {
@@ -52,7 +85,8 @@ std::string show_value(const json& value) {
     if (std::isnan(d)) return "nan";
     if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
   }
-  std::string text = value.dump(-1, ' ', /*ensure_ascii=*/true, json::error_handler_t::replace);
+  std::string text;
+  append_bounded(value, text, kMaxShownValueChars);
   if (text.size() > kMaxShownValueChars) {
     text.resize(kMaxShownValueChars - 3);
     text += "...";
@@ -93,10 +127,12 @@ class DuplicateKeyChecker {
     switch (event) {
       case json::parse_event_t::object_start:
         begin_element();
+        check_depth();
         frames_.push_back(Frame{true, {}, {}, 0});
         break;
       case json::parse_event_t::array_start:
         begin_element();
+        check_depth();
         frames_.push_back(Frame{false, {}, {}, 0});
         break;
       case json::parse_event_t::key: {
@@ -133,6 +169,17 @@ class DuplicateKeyChecker {
 
   void begin_element() {
     if (!frames_.empty() && !frames_.back().is_object) ++frames_.back().count;
+  }
+
+  // Called as a container opens: stops the parse at the first level too
+  // deep, before the rest of a hostile file is even read.
+  void check_depth() const {
+    if (frames_.size() + 1 > static_cast<std::size_t>(kMaxJsonDepth)) {
+      std::string path = current_path();
+      if (path.size() > kMaxShownValueChars) path = path.substr(0, kMaxShownValueChars - 3) + "...";
+      const std::string where = path.empty() ? std::string() : " at \"" + escape_for_message(path) + "\"";
+      throw_config_error(origin_, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels" + where);
+    }
   }
 
   // The path of the value being parsed (the last key's, or the array

@@ -59,9 +59,18 @@ inline constexpr NumberRange kNonNegative{0.0};
 inline constexpr NumberRange kPositive{0.0, std::numeric_limits<double>::infinity(), true, false};
 inline constexpr NumberRange kUnitInterval{0.0, 1.0};
 
-// Parses JSON text strictly: malformed text, and a key repeated within one
-// object (which nlohmann would silently resolve to the last value), are
-// errors naming `origin` and the position or key.
+// The deepest nesting of arrays and objects accepted in JSON from outside
+// (configs, glTF files; the top-level value is level 1). Real files nest
+// fewer than 10 levels. Code that recurses over a value (tinygltf's parser,
+// which 20,000 levels of `extras` crashed) then needs at most about 50 KB of
+// stack (measured), so a host thread with a small stack survives hostile
+// input too.
+inline constexpr int kMaxJsonDepth = 128;
+
+// Parses JSON text strictly: malformed text, nesting deeper than
+// kMaxJsonDepth, and a key repeated within one object (which nlohmann would
+// silently resolve to the last value), are errors naming `origin` and the
+// position or key.
 nlohmann::json parse_strict(std::string_view text, std::string_view origin);
 
 // `value` must be an object whose keys are all in `known`; otherwise throws
