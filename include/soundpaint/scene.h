@@ -47,13 +47,27 @@ struct Scene {
   std::size_t triangle_count() const { return triangle_layers.size(); }
 };
 
+// How load_scene treats a file that may come from a stranger (a downloaded
+// level, a mod): README "Security".
+struct SceneLoadOptions {
+  // false: buffers are read only from regular files inside the scene file's
+  // folder tree (no absolute path, no ".." or symbolic link leading out).
+  // true: from any regular file the URI names, for trusted asset pipelines.
+  // Either way, devices, /proc and /sys are never read and images never are.
+  bool allow_external_uris = false;
+};
+
 // Loads a .gltf or .glb file: every node of the default scene (or scene 0)
 // with its transform composed, every triangle primitive (indexed or not, any
 // index type; mode TRIANGLES, or TRIANGLE_STRIP / TRIANGLE_FAN), layers from
 // node extras.acoustic_layer, else the material name, else "default"; sources
 // from node extras.sound_source and KHR_audio_emitter positional emitters.
 // Errors name the file and the problem: unreadable file, malformed glTF,
-// missing buffer, index out of range, non-finite position, no triangle.
+// missing buffer, index out of range, non-finite position, no triangle;
+// and what `options` refuse: a buffer URI outside the rules, JSON nested
+// deeper than 128 levels.
+Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptions& options);
+// load_scene with the default SceneLoadOptions.
 Result<Scene> load_scene(const std::filesystem::path& path);
 
 }  // namespace sp

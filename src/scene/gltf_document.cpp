@@ -5,15 +5,16 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
+#include "core/regular_file.h"
+#include "scene/gltf_file_access.h"
+#include "scene/gltf_json_scan.h"
 #include "scene/scene_error.h"
+#include "scene/uri_confinement.h"
 
 namespace sp::scene_detail {
 namespace {
@@ -23,6 +24,9 @@ namespace {
 // empty accessors they leave behind.
 constexpr std::array<std::string_view, 3> kUnsupportedRequiredExtensions = {
     "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression"};
+
+// tinygltf takes a file's length as unsigned int; buffers get the same cap.
+constexpr std::uint64_t kMaxGltfFileBytes = std::numeric_limits<std::uint32_t>::max();
 
 // Soundpaint needs geometry only; textures are neither decoded nor checked.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -44,18 +48,6 @@ std::string one_line(std::string text) {
   return printable(text);
 }
 
-std::vector<unsigned char> read_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) fail("file not found");
-  if (std::filesystem::is_directory(status)) fail("is a directory, not a glTF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cannot open file for reading");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail("read error");
-  return bytes;
-}
-
 bool has_glb_magic(const std::vector<unsigned char>& bytes) {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
@@ -69,31 +61,47 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
-tinygltf::Model read_gltf(const std::filesystem::path& path) {
-  const std::vector<unsigned char> bytes = read_file(path);
+tinygltf::Model read_gltf(const std::filesystem::path& path, const SceneLoadOptions& options) {
+  const std::vector<unsigned char> bytes = read_regular_file(path, kMaxGltfFileBytes, ErrorCode::InvalidScene);
   if (bytes.empty()) fail("empty file");
-  // tinygltf takes the length as unsigned int.
-  if (bytes.size() > std::numeric_limits<std::uint32_t>::max()) fail("file larger than 4 GiB");
   const bool binary = has_glb_magic(bytes);
   if (!binary && lower_extension(path) == ".glb") fail("not a binary glTF file (no \"glTF\" magic)");
+  const char* const kind = binary ? "cannot load binary glTF: " : "cannot load glTF: ";
+
+  // The JSON is scanned before tinygltf sees it: too deep a file would
+  // overflow the stack in its recursive parse.
+  GltfJsonFacts facts;
+  try {
+    const std::string_view json =
+        binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    facts = scan_gltf_json(json);
+  } catch (const Exception& e) {
+    fail(kind + e.error().message);
+  }
+  GltfFileAccess files(UriRules{scene_folder_of(path), options.allow_external_uris}, facts.buffer_uris,
+                       kMaxGltfFileBytes);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetFsCallbacks(files.callbacks());
   // Extras are read back as JSON text, which keeps integer/float/bool distinct.
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
 
   tinygltf::Model model;
   std::string err;
   std::string warn;
-  const std::string base_dir = path.parent_path().string();
+  // No base directory: every URI reaches GltfFileAccess as written, which
+  // resolves it against the scene's folder itself.
+  const std::string base_dir;
   const auto size = static_cast<unsigned int>(bytes.size());
   const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
                          : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                                       size, base_dir);
+  if (!ok && !files.refusal().empty()) fail(files.refusal());
   if (!ok) {
     std::string problem = one_line(err.empty() ? warn : err);
     if (problem.empty()) problem = "tinygltf could not parse it";
-    fail((binary ? "cannot load binary glTF: " : "cannot load glTF: ") + problem);
+    fail(kind + problem);
   }
   if (model.asset.version.rfind("2.", 0) != 0) {
     fail("unsupported glTF version \"" + printable(model.asset.version) + "\" (need 2.x)");

@@ -261,12 +261,14 @@ class SceneAssembler {
 }  // namespace
 }  // namespace scene_detail
 
-Result<Scene> load_scene(const std::filesystem::path& path) {
+Result<Scene> load_scene(const std::filesystem::path& path) { return load_scene(path, SceneLoadOptions{}); }
+
+Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptions& options) {
   const std::string file = path.string();
   try {
     Scene scene;
     scene.path = path;
-    const tinygltf::Model model = scene_detail::read_gltf(path);
+    const tinygltf::Model model = scene_detail::read_gltf(path, options);
     scene_detail::SceneAssembler(model, scene).run();
     return scene;
   } catch (const Exception& e) {
