@@ -1,5 +1,6 @@
 // The bounds a scene from a stranger meets (README "Security"): JSON nesting
-// depth before tinygltf's recursive parse.
+// depth before tinygltf's recursive parse, the total triangle count before
+// any triangle is built, and instancing that costs only its triangles.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -70,6 +71,59 @@ TEST_F(SceneLimits, DepthLimitIsExactlyTheDocumentedOne) {
   ASSERT_FALSE(glb.ok());
   EXPECT_NE(glb.error().message.find("cannot load binary glTF: JSON nested deeper than 128 levels"), std::string::npos)
       << glb.error().message;
+}
+
+TEST_F(SceneLimits, CountsEveryInstanceAgainstMaxTriangles) {
+  const fs::path path = write("boxes.glb", sp::test::instanced_unit_boxes(20000).glb());
+  sp::SceneLoadOptions options;
+  options.max_triangles = 20000 * 12 - 1;
+  const sp::Result<sp::Scene> refused = sp::load_scene(path, options);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message,
+            path.string() +
+                ": more than 239999 triangles over its 20000 mesh instances (the limit max_triangles can "
+                "be raised: --max-triangles, SceneLoadOptions)");
+  options.max_triangles = 20000 * 12;
+  const sp::Result<sp::Scene> loaded = sp::load_scene(path, options);
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  EXPECT_EQ(loaded->triangle_count(), 240000u);
+  // The last instance sits at x = 3 * 19999; its first triangle is the
+  // box's (0,0,0), (0,1,0), (1,1,0) moved there.
+  const std::size_t last = 3 * 12 * 19999;
+  EXPECT_EQ(loaded->vertices[last], glm::vec3(59997, 0, 0));
+  EXPECT_EQ(loaded->vertices[last + 1], glm::vec3(59997, 1, 0));
+  EXPECT_EQ(loaded->vertices[last + 2], glm::vec3(59998, 1, 0));
+}
+
+// A 50k-triangle strip mesh placed by `instances` nodes.
+GltfBuilder instanced_strips(int instances) {
+  GltfBuilder b;
+  std::vector<glm::vec3> strip;
+  for (int i = 0; i < 25001; ++i) {
+    strip.push_back({0.01f * static_cast<float>(i), 0, 0});
+    strip.push_back({0.01f * static_cast<float>(i), 1, 0});
+  }
+  const int mesh = b.mesh(json::array({{{"attributes", {{"POSITION", b.positions(strip)}}}, {"mode", 5}}}));
+  for (int i = 0; i < instances; ++i) b.root(b.node({{"mesh", mesh}}));
+  return b;
+}
+
+// The input: 20,000 nodes instancing one 50k-triangle mesh (10^9
+// triangles) in a small file. Refused from the counts alone, at once.
+TEST_F(SceneLimits, RefusesABillionInstancedTrianglesFromTheCounts) {
+  const fs::path path = write("billion.glb", instanced_strips(20000).glb());
+  const sp::Result<sp::Scene> scene = sp::load_scene(path);
+  ASSERT_FALSE(scene.ok());
+  EXPECT_NE(scene.error().message.find("more than 2000000 triangles over its 20000 mesh instances"), std::string::npos)
+      << scene.error().message;
+  // However high max_triangles is set, triangle ids stay 32-bit.
+  sp::SceneLoadOptions unlimited;
+  unlimited.max_triangles = UINT64_MAX;
+  const sp::Result<sp::Scene> capped = sp::load_scene(write("1.5e9.glb", instanced_strips(30000).glb()), unlimited);
+  ASSERT_FALSE(capped.ok());
+  EXPECT_NE(capped.error().message.find("1431655765 triangles over its 30000 mesh instances, the most soundpaint"),
+            std::string::npos)
+      << capped.error().message;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // sp::load_scene: flattens the default scene of a glTF 2.0 file into one
 // world-space triangle list with a layer per triangle, and collects its sound
 // sources and first camera (SPEC section 3).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -14,8 +15,8 @@
 #include <utility>
 #include <vector>
 
-#include "scene/accessor_reader.h"
 #include "scene/gltf_document.h"
+#include "scene/mesh_decoder.h"
 #include "scene/node_transform.h"
 #include "scene/scene_error.h"
 #include "scene/scene_sources.h"
@@ -25,24 +26,8 @@ namespace sp {
 namespace scene_detail {
 namespace {
 
-constexpr int kModeTriangles = TINYGLTF_MODE_TRIANGLES;
-constexpr int kModeStrip = TINYGLTF_MODE_TRIANGLE_STRIP;
-constexpr int kModeFan = TINYGLTF_MODE_TRIANGLE_FAN;
-constexpr const char* kDefaultLayer = "default";
 // Triangle ids downstream (BVH, GPU buffers) are 32-bit.
-constexpr std::size_t kMaxTriangles = std::numeric_limits<std::uint32_t>::max() / 3;
-
-std::string mesh_label(int mesh, std::size_t primitive) {
-  return "mesh " + std::to_string(mesh) + " primitive " + std::to_string(primitive);
-}
-
-// The corner indices of triangle t of a primitive, per the glTF 2.0 spec's
-// definitions of strips and fans (section 3.7.2.1).
-std::array<std::size_t, 3> triangle_corners(int mode, std::size_t t) {
-  if (mode == kModeStrip) return {t, t + 1 + t % 2, t + 2 - t % 2};
-  if (mode == kModeFan) return {t + 1, t + 2, 0};
-  return {3 * t, 3 * t + 1, 3 * t + 2};
-}
+constexpr std::uint64_t kMaxTriangleIds = std::numeric_limits<std::uint32_t>::max() / 3;
 
 // Rotation and translation of a node's world matrix. A camera's scale would
 // distort the view, and glTF says camera nodes should not be scaled anyway.
@@ -57,15 +42,30 @@ glm::mat4 without_scale(const glm::dmat4& world) {
 
 class SceneAssembler {
  public:
-  SceneAssembler(const tinygltf::Model& model, Scene& scene)
-      : model_(model), scene_(scene), emitters_(read_audio_emitters(model)) {}
+  SceneAssembler(const tinygltf::Model& model, const SceneLoadOptions& options, Scene& scene)
+      : model_(model), options_(options), scene_(scene), emitters_(read_audio_emitters(model)) {}
 
+  // Walks the nodes (sources and camera in node order), then decodes each
+  // mesh once, checks the total triangle count before building anything,
+  // and places every instance into storage reserved once.
   void run() {
     visit(root_nodes(), roots_owner());
-    if (scene_.triangle_layers.empty()) fail("no triangles (the scene has no triangle meshes)");
+    const std::uint64_t triangles = count_triangles();
+    if (triangles == 0) fail("no triangles (the scene has no triangle meshes)");
+    scene_.vertices.reserve(3 * triangles);
+    scene_.triangle_layers.reserve(triangles);
+    for (const Instance& instance : instances_) place(instance);
   }
 
  private:
+  // A node's mesh, placed by its world transform.
+  struct Instance {
+    int node;
+    int mesh;
+    glm::dmat4 world;
+    std::optional<std::string> layer;  // the node's extras.acoustic_layer
+  };
+
   std::string roots_owner() const {
     if (model_.scenes.empty()) return "the node list";
     return "scene " + std::to_string(model_.defaultScene >= 0 ? model_.defaultScene : 0);
@@ -144,7 +144,12 @@ class SceneAssembler {
       }
     }
     if (node.camera >= 0 || node.camera < -1) add_camera(node_index, node.camera, world);
-    if (node.mesh >= 0 || node.mesh < -1) add_mesh(node_index, node.mesh, world, acoustics.layer);
+    if (node.mesh >= 0 || node.mesh < -1) {
+      if (node.mesh < 0 || static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+        fail(label(node_index) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
+      }
+      instances_.push_back({node_index, node.mesh, world, acoustics.layer});
+    }
   }
 
   void add_camera(int node_index, int camera_index, const glm::dmat4& world) {
@@ -172,78 +177,47 @@ class SceneAssembler {
     scene_.camera = camera;
   }
 
-  void add_mesh(int node_index, int mesh_index, const glm::dmat4& world, const std::optional<std::string>& layer) {
-    if (mesh_index < 0 || static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
-      fail(label(node_index) + " refers to mesh " + std::to_string(mesh_index) + ", which does not exist");
-    }
-    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
-    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-      add_primitive(mesh.primitives[p], mesh_label(mesh_index, p), world, layer);
-    }
-  }
-
-  void add_primitive(const tinygltf::Primitive& primitive, const std::string& where, const glm::dmat4& world,
-                     const std::optional<std::string>& node_layer) {
-    const int mode = primitive.mode == -1 ? kModeTriangles : primitive.mode;
-    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) return;  // no surface to hit
-    if (mode != kModeTriangles && mode != kModeStrip && mode != kModeFan) {
-      fail(where + ": unknown primitive mode " + std::to_string(mode));
-    }
-    const auto position = primitive.attributes.find("POSITION");
-    // glTF: a primitive without positions is not rendered; it has no surface.
-    if (position == primitive.attributes.end()) return;
-
-    const std::vector<glm::vec3> local = read_positions(model_, position->second);
-    std::vector<std::uint32_t> indices;
-    if (primitive.indices >= 0 || primitive.indices < -1) {
-      indices = read_indices(model_, primitive.indices);
-      for (std::size_t i = 0; i < indices.size(); ++i) {
-        if (indices[i] >= local.size()) {
-          fail(where + ": index " + std::to_string(indices[i]) + " (element " + std::to_string(i) +
-               ") is out of range for " + std::to_string(local.size()) + " vertices");
-        }
+  // Decodes each instanced mesh once; the sum over instances is checked
+  // against the limits without overflowing, however many instances.
+  std::uint64_t count_triangles() {
+    const std::uint64_t limit = std::min<std::uint64_t>(options_.max_triangles, kMaxTriangleIds);
+    std::uint64_t total = 0;
+    for (const Instance& instance : instances_) {
+      const std::size_t mesh = static_cast<std::size_t>(instance.mesh);
+      if (meshes_.size() <= mesh) meshes_.resize(model_.meshes.size());
+      if (!meshes_[mesh]) meshes_[mesh] = decode_mesh(model_, instance.mesh);
+      total += meshes_[mesh]->triangles;
+      if (total > limit) {
+        const std::string over = "more than " + std::to_string(limit) + " triangles over its " +
+                                 std::to_string(instances_.size()) + " mesh instances";
+        if (limit == kMaxTriangleIds) fail(over + ", the most soundpaint supports");
+        fail(over + " (the limit max_triangles can be raised: --max-triangles, SceneLoadOptions)");
       }
     }
-    const bool indexed = primitive.indices != -1;
-    const std::size_t corners = indexed ? indices.size() : local.size();
-    std::size_t triangles = 0;
-    if (mode == kModeTriangles) {
-      if (corners % 3 != 0) fail(where + ": " + std::to_string(corners) + " corners is not a multiple of 3");
-      triangles = corners / 3;
-    } else if (corners >= 3) {
-      triangles = corners - 2;
-    }
-    if (triangles == 0) return;
-    if (triangles > kMaxTriangles - scene_.triangle_layers.size()) fail("more than 2^32/3 triangles");
+    return total;
+  }
 
-    const std::uint32_t layer = layer_id(node_layer ? *node_layer : material_layer(primitive, where));
+  void place(const Instance& instance) {
     // A mirroring transform turns counter-clockwise into clockwise; swapping
     // two corners keeps front faces facing outward for the renderer.
-    const bool mirrored = glm::determinant(world) < 0.0;
-    scene_.vertices.reserve(scene_.vertices.size() + 3 * triangles);
-    for (std::size_t t = 0; t < triangles; ++t) {
-      std::array<std::size_t, 3> corner = triangle_corners(mode, t);
-      if (mirrored) std::swap(corner[1], corner[2]);
-      for (const std::size_t c : corner) {
-        const std::size_t vertex = indexed ? indices[c] : c;
-        const glm::dvec4 p = world * glm::dvec4(glm::dvec3(local[vertex]), 1.0);
-        const glm::vec3 w(p);
-        if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) {
-          fail(where + ": vertex " + std::to_string(vertex) + " is not finite in world space");
+    const bool mirrored = glm::determinant(instance.world) < 0.0;
+    for (const DecodedPrimitive& primitive : meshes_[static_cast<std::size_t>(instance.mesh)]->primitives) {
+      const std::uint32_t layer = layer_id(instance.layer ? *instance.layer : primitive.material_layer);
+      for (std::size_t t = 0; t < primitive.triangles; ++t) {
+        std::array<std::uint32_t, 3> corner = primitive.corners(t);
+        if (mirrored) std::swap(corner[1], corner[2]);
+        for (const std::uint32_t vertex : corner) {
+          const glm::dvec4 p = instance.world * glm::dvec4(glm::dvec3(primitive.positions[vertex]), 1.0);
+          const glm::vec3 w(p);
+          if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) {
+            fail("mesh " + std::to_string(instance.mesh) + " in " + label(instance.node) + ": vertex " +
+                 std::to_string(vertex) + " is not finite in world space");
+          }
+          scene_.vertices.push_back(w);
         }
-        scene_.vertices.push_back(w);
+        scene_.triangle_layers.push_back(layer);
       }
-      scene_.triangle_layers.push_back(layer);
     }
-  }
-
-  std::string material_layer(const tinygltf::Primitive& primitive, const std::string& where) const {
-    if (primitive.material == -1) return kDefaultLayer;
-    if (primitive.material < 0 || static_cast<std::size_t>(primitive.material) >= model_.materials.size()) {
-      fail(where + " refers to material " + std::to_string(primitive.material) + ", which does not exist");
-    }
-    const std::string& name = model_.materials[static_cast<std::size_t>(primitive.material)].name;
-    return name.empty() ? kDefaultLayer : name;
   }
 
   std::uint32_t layer_id(const std::string& name) {
@@ -253,8 +227,11 @@ class SceneAssembler {
   }
 
   const tinygltf::Model& model_;
+  const SceneLoadOptions& options_;
   Scene& scene_;
   std::vector<AudioEmitter> emitters_;
+  std::vector<Instance> instances_;                 // in node order
+  std::vector<std::optional<DecodedMesh>> meshes_;  // by mesh index, once instanced
   std::unordered_map<std::string, std::uint32_t> layer_ids_;
 };
 
@@ -269,7 +246,7 @@ Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptio
     Scene scene;
     scene.path = path;
     const tinygltf::Model model = scene_detail::read_gltf(path, options);
-    scene_detail::SceneAssembler(model, scene).run();
+    scene_detail::SceneAssembler(model, options, scene).run();
     return scene;
   } catch (const Exception& e) {
     // Parts report without the path (json_fields as InvalidConfig); every

@@ -69,6 +69,18 @@ class GltfBuilder {
     primitive.update(extra);
     return mesh(json::array({primitive}));
   }
+  // A one-primitive mesh of the 12 outward-facing triangles of the unit
+  // cube [0, 1]^3, indexed with 32-bit indices; the first triangle is
+  // (0,0,0), (0,1,0), (1,1,0). `unused_vertices` more vertices (at the
+  // centre) pad its POSITION accessor without being used.
+  int unit_box_mesh(std::size_t unused_vertices = 0) {
+    std::vector<glm::vec3> corners = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                      {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    corners.resize(corners.size() + unused_vertices, glm::vec3(0.5f));
+    const std::vector<std::uint32_t> faces = {0, 3, 2, 0, 2, 1, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                                              2, 3, 7, 2, 7, 6, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5};
+    return mesh(json::array({{{"attributes", {{"POSITION", positions(corners)}}}, {"indices", indices(faces, kU32)}}}));
+  }
   int node(json n) { return append("nodes", std::move(n)); }
   void root(int node_index) { doc["scenes"][0]["nodes"].push_back(node_index); }
 
@@ -114,5 +126,14 @@ class GltfBuilder {
     return static_cast<int>(doc[array].size()) - 1;
   }
 };
+
+// The unit box (GltfBuilder::unit_box_mesh) placed by `instances` nodes,
+// instance i translated by (3 i, 0, 0): a level of many identical props.
+inline GltfBuilder instanced_unit_boxes(int instances, std::size_t unused_vertices = 0) {
+  GltfBuilder b;
+  const int mesh = b.unit_box_mesh(unused_vertices);
+  for (int i = 0; i < instances; ++i) b.root(b.node({{"mesh", mesh}, {"translation", {3.0 * i, 0, 0}}}));
+  return b;
+}
 
 }  // namespace sp::test
