@@ -2,6 +2,8 @@
 // on the calling thread, then casts its rays on the thread pool
 // (cpu_step_runner.h) and keeps the indicators in a ring as the GPU does.
 #include <algorithm>
+#include <optional>
+#include <string>
 
 #include "sim/cpu_step_runner.h"
 #include "sim/indicator_ring.h"
@@ -29,7 +31,38 @@ class CpuSimulator final : public Simulator {
   std::uint64_t steps_run() const override { return steps_run_; }
   std::uint64_t last_step_casts() const override { return last_.counters.casts; }
 
+  // A step that fails (out of memory, say) has planned its sources and
+  // half-traced its rays; rather than run on from that state, the simulator
+  // stops: this and every later step() (and last_step_indicators()) return
+  // the error, while live_indicators() and stats() keep reporting the steps
+  // before it. A host recovers by creating a new simulator.
   Result<bool> step() override {
+    if (failure_) return *failure_;
+    Result<bool> done = run_step();
+    if (!done) {
+      failure_ = done.error();
+      failure_->message =
+          "step " + std::to_string(steps_run_) + " failed, the simulator has stopped: " + failure_->message;
+      return *failure_;
+    }
+    return done;
+  }
+
+  Result<std::vector<Indicator>> last_step_indicators() override {
+    if (failure_) return *failure_;  // the failed step's list may be partial
+    return last_.indicators;
+  }
+
+  Result<std::vector<Indicator>> live_indicators() override {
+    if (steps_run_ == 0) return std::vector<Indicator>{};
+    const Config& config = scene_.world().config;
+    return ring_.live(steps_run_ - 1, config.dt, config.indicator_lifetime);
+  }
+
+  Result<SimulationStats> stats() override { return totals_; }
+
+ private:
+  Result<bool> run_step() {
     return capture_errors([&] {
       const std::uint64_t step = steps_run_;
       (void)scene_.update_geometry();
@@ -48,17 +81,6 @@ class CpuSimulator final : public Simulator {
     });
   }
 
-  Result<std::vector<Indicator>> last_step_indicators() override { return last_.indicators; }
-
-  Result<std::vector<Indicator>> live_indicators() override {
-    if (steps_run_ == 0) return std::vector<Indicator>{};
-    const Config& config = scene_.world().config;
-    return ring_.live(steps_run_ - 1, config.dt, config.indicator_lifetime);
-  }
-
-  Result<SimulationStats> stats() override { return totals_; }
-
- private:
   SoundScene scene_;
   CpuStepRunner runner_;
   IndicatorRing ring_;
@@ -67,6 +89,7 @@ class CpuSimulator final : public Simulator {
   CpuStepOutput last_;
   SimulationStats totals_;
   std::uint64_t steps_run_ = 0;
+  std::optional<Error> failure_;  // set by the first failed step
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "sim/thread_pool.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace sp {
 
@@ -22,7 +23,17 @@ void ThreadPool::run_chunks(unsigned worker) {
   for (;;) {
     std::size_t first = next_.fetch_add(grain_, std::memory_order_relaxed);
     if (first >= count_) return;
-    (*body_)(first, std::min(count_, first + grain_), worker);
+    try {
+      (*body_)(first, std::min(count_, first + grain_), worker);
+    } catch (...) {
+      {
+        std::lock_guard lock(mutex_);
+        if (!failure_) failure_ = std::current_exception();
+      }
+      // No more chunks for anyone: the call is failing anyway.
+      next_.store(count_, std::memory_order_relaxed);
+      return;
+    }
   }
 }
 
@@ -56,14 +67,18 @@ void ThreadPool::parallel_for(std::size_t count, std::size_t grain, const Body& 
     count_ = count;
     grain_ = grain;
     next_.store(0, std::memory_order_relaxed);
+    failure_ = nullptr;
     busy_workers_ = static_cast<unsigned>(workers_.size());
     ++generation_;
   }
   wake_.notify_all();
   run_chunks(0);
+  // Every worker is waited for even when this thread's chunk failed: they
+  // still use `body`, which lives in the caller's frame.
   std::unique_lock lock(mutex_);
   done_.wait(lock, [&] { return busy_workers_ == 0; });
   body_ = nullptr;
+  if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
 }  // namespace sp

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -28,6 +29,10 @@ class ThreadPool {
   // [0, size()) and no two concurrent calls share one. Returns when all
   // chunks are done. Chunks are claimed dynamically, so which worker runs
   // which chunk varies: bodies must write to per-chunk or per-worker storage.
+  // If a body throws (std::bad_alloc, say), no further chunk is started,
+  // the running ones finish, and the first exception is rethrown here on
+  // the calling thread: nothing escapes a worker, which would terminate
+  // the host process. The pool stays usable.
   void parallel_for(std::size_t count, std::size_t grain, const Body& body);
 
  private:
@@ -46,6 +51,7 @@ class ThreadPool {
   std::size_t count_ = 0;
   std::size_t grain_ = 1;
   std::atomic<std::size_t> next_{0};
+  std::exception_ptr failure_;  // the first body exception of this call (under mutex_)
 };
 
 }  // namespace sp
