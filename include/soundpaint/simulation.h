@@ -150,6 +150,10 @@ class SoundScene {
 
 enum class Backend { Cpu, Gpu };
 
+// The default memory budget of a simulator: what its rays and indicators may
+// take at worst, estimated from the config at creation (README "Security").
+inline constexpr std::uint64_t kDefaultMemoryBudgetBytes = std::uint64_t{2} << 30;
+
 struct GpuSettings {
   bool validation = false;  // Khronos validation layer (also SOUNDPAINT_VALIDATION=1)
   std::string device_name;  // substring of the device to use; empty: SOUNDPAINT_DEVICE, else the best
@@ -157,10 +161,16 @@ struct GpuSettings {
   // false and that is all there is, creation fails with ErrorCode::Vulkan:
   // the CPU backend is faster on the same cores.
   bool allow_cpu_device = true;
+  // Creation fails (LimitExceeded) when the config's rays and indicators
+  // could need more than this many bytes (host and device together).
+  std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
 };
 
 struct CpuSettings {
   unsigned threads = 0;  // worker threads; 0: std::thread::hardware_concurrency()
+  // Creation fails (LimitExceeded) when the config's indicators could need
+  // more than this many bytes.
+  std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
 };
 
 // A running simulation. Not thread-safe: call from one thread at a time.

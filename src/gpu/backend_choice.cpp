@@ -3,6 +3,7 @@
 #include <string>
 
 #include "gpu/gpu_simulator.h"
+#include "sim/memory_estimate.h"
 
 namespace sp {
 namespace {
@@ -42,6 +43,12 @@ Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, Wor
                       context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
                     return Error{ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
                                                         std::string(context.properties().deviceName) + ")"};
+                  // On a shared context the CPU settings' budget holds for both backends.
+                  Result<bool> fits = capture_errors([&] {
+                    check_memory_budget(w.config, Backend::Gpu, cpu.memory_budget_bytes);
+                    return true;
+                  });
+                  if (!fits) return fits.error();
                   return create_simulator(w, context);
                 });
 }

@@ -12,6 +12,7 @@
 
 #include "gpu/gpu_resources.h"
 #include "gpu/step_engine.h"
+#include "sim/memory_estimate.h"
 #include "sim/step_plan.h"
 #include "vk/handle.h"
 #include "vk/vk_check.h"
@@ -226,6 +227,7 @@ Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSe
     if (!settings.allow_cpu_device && context->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
       throw Exception(ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
                                              std::string(context->properties().deviceName) + ")");
+    check_memory_budget(world.config, Backend::Gpu, settings.memory_budget_bytes);  // before any buffer exists
     vk::Context& ref = *context;
     return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
   }, ErrorCode::Vulkan);

@@ -7,6 +7,7 @@
 
 #include "sim/cpu_step_runner.h"
 #include "sim/indicator_ring.h"
+#include "sim/memory_estimate.h"
 #include "sim/step_plan.h"
 
 namespace sp {
@@ -97,6 +98,7 @@ class CpuSimulator final : public Simulator {
 Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSettings& settings) {
   return capture_errors([&]() -> std::unique_ptr<Simulator> {
     if (world.bvh.nodes.empty()) throw Exception(ErrorCode::InvalidArgument, "create_cpu_simulator: the world has no BVH");
+    check_memory_budget(world.config, Backend::Cpu, settings.memory_budget_bytes);
     return std::make_unique<CpuSimulator>(std::move(world), settings);
   });
 }
