@@ -16,6 +16,7 @@
 #include "draw/renderer.h"
 #include "draw/view_camera.h"
 #include "io/atomic_file.h"
+#include "io/output_path.h"
 #include "vk/context.h"
 
 namespace sp::cli {
@@ -28,7 +29,8 @@ constexpr const char* kHelp =
     "\n"
     "Simulates N steps (default 60) of SCENE, then draws the scene (tinted by layer, with\n"
     "markers at the sources and the listener) and every live indicator into a PNG.\n"
-    "  --out FILE           the PNG to write; with --frames a pattern such as frame%04d.png\n"
+    "  --out FILE           the PNG to write (a regular file, written through a symbolic link,\n"
+    "                       or - for standard output); with --frames a pattern such as frame%04d.png\n"
     "  --config FILE        JSON configuration (see README: configuration keys)\n"
     "  --backend B          cpu, gpu or auto (default auto); drawing always needs a Vulkan device\n"
     "  --steps N            steps simulated before the (first) picture, each dt seconds (default 60)\n"
@@ -135,8 +137,10 @@ int run_render(const std::vector<std::string>& args) {
   if (!pattern) {
     single_output->write(draw::encode_png(renderer.render(camera, *simulator)));
     single_output->commit();
-    std::printf("%s: %ux%u after %llu steps on %s\n", out->c_str(), settings.width, settings.height,
-                static_cast<unsigned long long>(steps), backend_name(simulator->backend()));
+    // A PNG on standard output leaves the summary to stderr.
+    std::fprintf(names_stdout(*out) ? stderr : stdout, "%s: %ux%u after %llu steps on %s\n", out->c_str(),
+                 settings.width, settings.height, static_cast<unsigned long long>(steps),
+                 backend_name(simulator->backend()));
     return 0;
   }
   for (std::uint64_t k = 0; k < *frames; ++k) {

@@ -1,11 +1,13 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
 #include "io/atomic_file.h"
+#include "io/output_path.h"
 #include "soundpaint/output.h"
 
 namespace sp::cli {
@@ -24,7 +26,9 @@ constexpr const char* kHelp =
     "  --seed S             overrides the config's seed (0..4294967295)\n"
     "  --threads T          CPU backend worker threads (default: all cores)\n"
     "  --indicators FILE    CSV of every indicator created, header first\n"
-    "  --stats FILE         JSON with counts, per-layer counters and step timing\n";
+    "  --stats FILE         JSON with counts, per-layer counters and step timing\n"
+    "                       (outputs: a regular file, written through a symbolic link,\n"
+    "                       or - for standard output)\n";
 
 }  // namespace
 
@@ -41,6 +45,18 @@ int run_simulate(const std::vector<std::string>& args) {
   const auto seed = parsed.unsigned_value("--seed", 0, 0xFFFFFFFFull);
   const auto threads = parsed.unsigned_value("--threads", 1, 1024);
   const BackendChoice backend = parse_backend(parsed.value("--backend").value_or("auto"));
+  const std::optional<std::string> indicators_path = parsed.value("--indicators");
+  const std::optional<std::string> stats_path = parsed.value("--stats");
+  std::vector<NamedOutput> outputs;
+  if (indicators_path) outputs.push_back({"--indicators", *indicators_path});
+  if (stats_path) outputs.push_back({"--stats", *stats_path});
+  // Refused outputs fail before the scene is even read.
+  for (const NamedOutput& output : outputs) (void)resolve_output(output.path);
+  check_distinct_outputs(outputs);
+  // With an output on standard output, the summary line goes to stderr.
+  const bool stdout_taken =
+      (indicators_path && names_stdout(*indicators_path)) || (stats_path && names_stdout(*stats_path));
+  std::FILE* const report = stdout_taken ? stderr : stdout;
 
   World world = load_world(parsed.positionals[0], parsed.value("--config"), seed);
   std::unique_ptr<Simulator> simulator = create_simulator(std::move(world), backend,
@@ -49,9 +65,9 @@ int run_simulate(const std::vector<std::string>& args) {
   // Open outputs before the run so an unwritable path fails fast; both only
   // appear under their names once complete.
   std::optional<IndicatorCsvWriter> csv;
-  if (auto path = parsed.value("--indicators")) csv.emplace(*path);
+  if (indicators_path) csv.emplace(*indicators_path);
   std::optional<AtomicFile> stats_file;
-  if (auto path = parsed.value("--stats")) stats_file.emplace(*path);
+  if (stats_path) stats_file.emplace(*stats_path);
 
   StepTimings timings;
   for (std::uint64_t n = 0; n < steps; ++n) {
@@ -68,10 +84,10 @@ int run_simulate(const std::vector<std::string>& args) {
                                               simulator->device_description(), timings));
   if (csv) csv->commit();
   if (stats_file) stats_file->commit();
-  std::printf("%llu steps on %s: %llu rays, %llu casts, %llu indicators, %.3f ms/step median\n",
-              static_cast<unsigned long long>(stats.steps), backend_name(simulator->backend()),
-              static_cast<unsigned long long>(stats.rays_emitted), static_cast<unsigned long long>(stats.casts),
-              static_cast<unsigned long long>(stats.indicators), median(timings.wall_ms));
+  std::fprintf(report, "%llu steps on %s: %llu rays, %llu casts, %llu indicators, %.3f ms/step median\n",
+               static_cast<unsigned long long>(stats.steps), backend_name(simulator->backend()),
+               static_cast<unsigned long long>(stats.rays_emitted), static_cast<unsigned long long>(stats.casts),
+               static_cast<unsigned long long>(stats.indicators), median(timings.wall_ms));
   return 0;
 }
 
