@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "cli/options.h"
 #include "soundpaint/simulation.h"
 
@@ -9,7 +10,7 @@ namespace sp::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: soundpaint info SCENE [--config FILE]\n"
+    "usage: soundpaint info SCENE [--config FILE] [--max-triangles N] [--allow-external-uris]\n"
     "\n"
     "Prints the scene's triangles, layers (with triangle counts and the acoustic\n"
     "properties they resolve to), sources, listener, and BVH node count, depth and\n"
@@ -20,16 +21,18 @@ void print_vec(glm::vec3 v) { std::printf("(%.3f, %.3f, %.3f)", double(v.x), dou
 }  // namespace
 
 int run_info(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, {"--config"}, {"--help"});
+  ParsedArgs parsed = parse_args(args, with_options({"--config"}, kSceneLimitValueOptions),
+                                 with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
+    std::fputs(scene_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
     throw Exception(ErrorCode::InvalidArgument, "info needs exactly one SCENE argument (see --help)");
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();
-  Scene scene = load_scene(parsed.positionals[0]).value();
+  Scene scene = load_scene(parsed.positionals[0], scene_load_options(parsed)).value();
   // info describes scenes without a listener too; simulate would reject them.
   const char* listener_from = config.listener_position ? "config" : scene.camera ? "camera" : "none; origin assumed";
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);

@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/frame_pattern.h"
+#include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
 #include "draw/png_writer.h"
@@ -26,6 +27,7 @@ constexpr const char* kHelp =
     "usage: soundpaint render SCENE --out IMAGE.png [--config FILE] [--backend cpu|gpu|auto]\n"
     "                         [--steps N] [--seed S] [--threads T] [--width W] [--height H]\n"
     "                         [--camera-pos x,y,z] [--look-at x,y,z] [--fov DEGREES] [--frames K]\n"
+    "                         [--max-triangles N] [--allow-external-uris] [--memory-budget SIZE]\n"
     "\n"
     "Simulates N steps (default 60) of SCENE, then draws the scene (tinted by layer, with\n"
     "markers at the sources and the listener) and every live indicator into a PNG.\n"
@@ -85,12 +87,17 @@ void check_device_limit(const vk::Context& context, std::uint32_t width, std::ui
 }  // namespace
 
 int run_render(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args,
-                                 {"--config", "--backend", "--steps", "--seed", "--threads", "--out", "--width",
-                                  "--height", "--camera-pos", "--look-at", "--fov", "--frames"},
-                                 {"--help"});
+  ParsedArgs parsed =
+      parse_args(args,
+                 with_options(with_options({"--config", "--backend", "--steps", "--seed", "--threads", "--out",
+                                            "--width", "--height", "--camera-pos", "--look-at", "--fov", "--frames"},
+                                           kSceneLimitValueOptions),
+                              kMemoryLimitValueOptions),
+                 with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
+    std::fputs(scene_limit_help().c_str(), stdout);
+    std::fputs(memory_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
@@ -121,14 +128,15 @@ int run_render(const std::vector<std::string>& args) {
     single_output.emplace(*out);
   }
 
-  LoadedWorld loaded = load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed);
+  LoadedWorld loaded =
+      load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
   auto created = vk::Context::create();
   if (!created) throw Exception(ErrorCode::Vulkan, "render needs a Vulkan device to draw: " + created.error().message);
   // Declared first, destroyed last: the simulator and renderer use it.
   std::unique_ptr<vk::Context> context = std::move(created.value());
   check_device_limit(*context, settings.width, settings.height);
-  std::unique_ptr<Simulator> simulator =
-      create_simulator_on(*context, std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)));
+  std::unique_ptr<Simulator> simulator = create_simulator_on(
+      *context, std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
   const draw::ViewCamera camera =
       draw::make_view_camera(loaded.scene.camera, simulator->world(), overrides, settings.width, settings.height);
   draw::Renderer renderer(*context, simulator->world(), settings);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
 #include "io/atomic_file.h"
@@ -16,6 +17,7 @@ namespace {
 constexpr const char* kHelp =
     "usage: soundpaint simulate SCENE [--config FILE] [--backend cpu|gpu|auto] [--steps N]\n"
     "                           [--seed S] [--threads T] [--indicators OUT.csv] [--stats OUT.json]\n"
+    "                           [--max-triangles N] [--allow-external-uris] [--memory-budget SIZE]\n"
     "\n"
     "Runs N steps (default 120) of the ray model on SCENE (.gltf or .glb).\n"
     "  --config FILE        JSON configuration (see README: configuration keys)\n"
@@ -34,9 +36,15 @@ constexpr const char* kHelp =
 
 int run_simulate(const std::vector<std::string>& args) {
   ParsedArgs parsed = parse_args(
-      args, {"--config", "--backend", "--steps", "--seed", "--threads", "--indicators", "--stats"}, {"--help"});
+      args,
+      with_options(with_options({"--config", "--backend", "--steps", "--seed", "--threads", "--indicators", "--stats"},
+                                kSceneLimitValueOptions),
+                   kMemoryLimitValueOptions),
+      with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
+    std::fputs(scene_limit_help().c_str(), stdout);
+    std::fputs(memory_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
@@ -58,9 +66,9 @@ int run_simulate(const std::vector<std::string>& args) {
       (indicators_path && names_stdout(*indicators_path)) || (stats_path && names_stdout(*stats_path));
   std::FILE* const report = stdout_taken ? stderr : stdout;
 
-  World world = load_world(parsed.positionals[0], parsed.value("--config"), seed);
-  std::unique_ptr<Simulator> simulator = create_simulator(std::move(world), backend,
-                                                          static_cast<unsigned>(threads.value_or(0)));
+  World world = load_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
+  std::unique_ptr<Simulator> simulator =
+      create_simulator(std::move(world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
 
   // Open outputs before the run so an unwritable path fails fast; both only
   // appear under their names once complete.

@@ -8,18 +8,18 @@
 namespace sp::cli {
 
 LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                                 std::optional<std::uint64_t> seed_override) {
+                                 std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options) {
   Config config;
   if (config_path) config = load_config(*config_path).value();
   if (seed_override) config.seed = static_cast<std::uint32_t>(*seed_override);
-  Scene scene = load_scene(scene_path).value();
+  Scene scene = load_scene(scene_path, scene_options).value();
   World world = make_world(scene, config).value();
   return LoadedWorld{std::move(scene), std::move(world)};
 }
 
 World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                 std::optional<std::uint64_t> seed_override) {
-  return load_scene_and_world(scene_path, config_path, seed_override).world;
+                 std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options) {
+  return load_scene_and_world(scene_path, config_path, seed_override, scene_options).world;
 }
 
 BackendChoice parse_backend(const std::string& name) {
@@ -43,19 +43,25 @@ std::unique_ptr<Simulator> report(Result<std::unique_ptr<Simulator>> made, const
 
 }  // namespace
 
-std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads) {
+std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads,
+                                            std::uint64_t memory_budget) {
   SimulatorSettings settings;
   settings.backend = backend;
   settings.cpu.threads = cpu_threads;
+  settings.cpu.memory_budget_bytes = memory_budget;
+  settings.gpu.memory_budget_bytes = memory_budget;
   std::string fallback_reason;
   auto made = sp::create_simulator(std::move(world), settings, &fallback_reason);
   return report(std::move(made), fallback_reason);
 }
 
 std::unique_ptr<Simulator> create_simulator_on(vk::Context& context, World world, BackendChoice backend,
-                                               unsigned cpu_threads) {
+                                               unsigned cpu_threads, std::uint64_t memory_budget) {
   std::string fallback_reason;
-  auto made = gpu::create_simulator_on(context, std::move(world), backend, CpuSettings{cpu_threads}, &fallback_reason);
+  CpuSettings cpu;
+  cpu.threads = cpu_threads;
+  cpu.memory_budget_bytes = memory_budget;
+  auto made = gpu::create_simulator_on(context, std::move(world), backend, cpu, &fallback_reason);
   return report(std::move(made), fallback_reason);
 }
 

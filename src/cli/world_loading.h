@@ -23,25 +23,30 @@ struct LoadedWorld {
 
 // load_world() that also returns the scene.
 LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                                 std::optional<std::uint64_t> seed_override);
+                                 std::optional<std::uint64_t> seed_override,
+                                 const SceneLoadOptions& scene_options = {});
 
-// Loads the scene and optional config, applies a --seed override, builds the
-// World. Throws sp::Exception naming the file and problem.
+// Loads the scene (as `scene_options` allow) and optional config, applies a
+// --seed override, builds the World. Throws sp::Exception naming the file
+// and problem.
 World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                 std::optional<std::uint64_t> seed_override);
-
+                 std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options = {});
 
 // "cpu", "gpu" or "auto"; throws naming --backend otherwise.
 BackendChoice parse_backend(const std::string& name);
 
 const char* backend_name(Backend backend);
 
-// Auto tries the GPU and falls back to the CPU, saying so on stderr.
-std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads);
+// Auto tries the GPU and falls back to the CPU, saying so on stderr. A
+// config whose rays and indicators could need more than `memory_budget`
+// bytes fails (--memory-budget).
+std::unique_ptr<Simulator> create_simulator(World world, BackendChoice backend, unsigned cpu_threads,
+                                            std::uint64_t memory_budget = kDefaultMemoryBudgetBytes);
 
 // The same choice, with the GPU backend on `context` (which must outlive the
 // simulator) so that a draw pass on that context can use its buffers.
 std::unique_ptr<Simulator> create_simulator_on(vk::Context& context, World world, BackendChoice backend,
-                                               unsigned cpu_threads);
+                                               unsigned cpu_threads,
+                                               std::uint64_t memory_budget = kDefaultMemoryBudgetBytes);
 
 }  // namespace sp::cli
