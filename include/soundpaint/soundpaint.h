@@ -150,6 +150,32 @@ void sp_source_desc_init(sp_source_desc* desc) SP_NOEXCEPT;
  * Thread-safe. */
 sp_result sp_scene_load(const char* path, sp_scene** out) SP_NOEXCEPT;
 
+/* How sp_scene_load_with_options treats a scene that may come from a
+ * stranger (a downloaded level, a mod); README "Security". Fill it with
+ * sp_scene_load_options_init first: later versions may add fields. */
+typedef struct sp_scene_load_options {
+  uint32_t flags;         /* SP_SCENE_LOAD_* bits; default 0 */
+  uint64_t max_triangles; /* a scene with more (every mesh instance counted) is refused before
+                             its triangles are built; default 2,000,000, at most 2^32 / 3 */
+} sp_scene_load_options;
+
+/* Lifts the folder rule: buffer URIs may name regular files anywhere
+ * (absolute paths, ".." and symbolic links leading out of the scene's
+ * folder), for trusted asset pipelines only. Devices, /proc and /sys stay
+ * refused, and images are never read either way. */
+#define SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS 1u
+
+/* Fills *options with the defaults sp_scene_load uses. NULL is a no-op. */
+void sp_scene_load_options_init(sp_scene_load_options* options) SP_NOEXCEPT;
+
+/* sp_scene_load with options (non-NULL; unknown flag bits and max_triangles
+ * 0 are SP_ERROR_INVALID_ARGUMENT). By default a scene reads only regular
+ * files inside its own folder tree; a refused buffer URI, JSON nested deeper
+ * than 128 levels or too many triangles give SP_ERROR_INVALID_SCENE naming
+ * the problem. Thread-safe. */
+sp_result sp_scene_load_with_options(const char* path, const sp_scene_load_options* options,
+                                     sp_scene** out) SP_NOEXCEPT;
+
 /* Creates a scene from the host's arrays; the arrays are copied and may be
  * freed after the call. The scene has no sources and no camera: give them in
  * the simulation's JSON config ("sources", "listener") or add sources at run
@@ -208,6 +234,26 @@ sp_result sp_scene_destroy(sp_scene* scene) SP_NOEXCEPT;
 sp_result sp_simulation_create(const sp_scene* scene, const char* config_json, sp_backend backend,
                                sp_simulation** out) SP_NOEXCEPT;
 
+/* What sp_simulation_create_with_options takes beyond the scene and config.
+ * Fill it with sp_simulation_options_init first: later versions may add
+ * fields. */
+typedef struct sp_simulation_options {
+  sp_backend backend;           /* default SP_BACKEND_AUTO */
+  uint64_t memory_budget_bytes; /* creation fails with SP_ERROR_LIMIT_EXCEEDED, naming the config keys,
+                                   when the config's rays and indicators could need more at worst
+                                   (README "Security"); default 2 GiB, > 0 */
+} sp_simulation_options;
+
+/* Fills *options with the defaults (those of sp_simulation_create with
+ * SP_BACKEND_AUTO). NULL is a no-op. */
+void sp_simulation_options_init(sp_simulation_options* options) SP_NOEXCEPT;
+
+/* sp_simulation_create with options (non-NULL; memory_budget_bytes 0 is
+ * SP_ERROR_INVALID_ARGUMENT). sp_simulation_create checks the default
+ * budget. Errors and thread-safety as sp_simulation_create. */
+sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* config_json,
+                                            const sp_simulation_options* options, sp_simulation** out) SP_NOEXCEPT;
+
 /* Destroys a simulation and its resources; its sp_sound_scene stops being
  * live. NULL is a no-op (SP_OK). Not while another thread uses it.
  * Errors: SP_ERROR_INVALID_ARGUMENT when `simulation` is not live. */
@@ -230,7 +276,10 @@ sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, doub
 
 /* Runs the next step (config "dt" seconds of simulated time).
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live); device failures
- * (SP_ERROR_VULKAN) on the GPU backend. */
+ * (SP_ERROR_VULKAN) on the GPU backend; SP_ERROR_LIMIT_EXCEEDED when the
+ * CPU backend runs out of memory, after which the simulation has stopped:
+ * every later step returns the same error (indicators and stats still
+ * describe the steps before it); destroy it and create another. */
 sp_result sp_simulation_step(sp_simulation* simulation) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the number of source slots: source ids are

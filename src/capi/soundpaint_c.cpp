@@ -127,13 +127,39 @@ sp_result create_scene(const SceneArrays& in, sp_scene** out, const char* fn) {
 
 extern "C" {
 
+namespace {
+
+void load_scene_into(const char* path, const sp::SceneLoadOptions& options, sp_scene** out, const char* fn) {
+  require(path != nullptr, fn, "path is NULL");
+  require(out != nullptr, fn, "out is NULL");
+  auto scene = std::make_unique<sp_scene>(sp_scene{unwrap(sp::load_scene(path, options))});
+  sp::capi::register_handle(HandleKind::Scene, scene.get());
+  *out = scene.release();
+}
+
+}  // namespace
+
 sp_result sp_scene_load(const char* path, sp_scene** out) noexcept {
+  return guarded([&] { load_scene_into(path, sp::SceneLoadOptions{}, out, "sp_scene_load"); });
+}
+
+void sp_scene_load_options_init(sp_scene_load_options* options) noexcept {
+  if (options == nullptr) return;
+  *options = sp_scene_load_options{};
+  options->max_triangles = sp::SceneLoadOptions{}.max_triangles;
+}
+
+sp_result sp_scene_load_with_options(const char* path, const sp_scene_load_options* options, sp_scene** out) noexcept {
   return guarded([&] {
-    require(path != nullptr, "sp_scene_load", "path is NULL");
-    require(out != nullptr, "sp_scene_load", "out is NULL");
-    auto scene = std::make_unique<sp_scene>(sp_scene{unwrap(sp::load_scene(path))});
-    sp::capi::register_handle(HandleKind::Scene, scene.get());
-    *out = scene.release();
+    const char* fn = "sp_scene_load_with_options";
+    require(options != nullptr, fn, "options is NULL");
+    if ((options->flags & ~SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0)
+      throw_invalid(fn, "options->flags has unknown bits " + std::to_string(options->flags));
+    require(options->max_triangles > 0, fn, "options->max_triangles is 0");
+    sp::SceneLoadOptions converted;
+    converted.allow_external_uris = (options->flags & SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0;
+    converted.max_triangles = options->max_triangles;
+    load_scene_into(path, converted, out, fn);
   });
 }
 
@@ -157,19 +183,49 @@ sp_result sp_scene_destroy(sp_scene* scene) noexcept {
   return guarded([&] { sp::capi::destroy_handle(HandleKind::Scene, scene, "sp_scene_destroy", "scene"); });
 }
 
+namespace {
+
+void create_simulation(const sp_scene* scene, const char* config_json, const sp_simulation_options& options,
+                       sp_simulation** out, const char* fn) {
+  require_live(HandleKind::Scene, scene, fn, "scene");
+  require(out != nullptr, fn, "out is NULL");
+  require(options.memory_budget_bytes > 0, fn, "options->memory_budget_bytes is 0");
+  sp::SimulatorSettings settings;
+  settings.backend = sp::capi::backend_choice(options.backend, fn);
+  settings.cpu.memory_budget_bytes = options.memory_budget_bytes;
+  settings.gpu.memory_budget_bytes = options.memory_budget_bytes;
+  auto simulation = std::make_unique<sp_simulation>();
+  simulation->simulator = unwrap(sp::create_simulator(sp::capi::world_from(*scene, config_json), settings));
+  simulation->sound_scene.scene = &simulation->simulator->scene();
+  sp::capi::register_handle(HandleKind::Simulation, simulation.get(), &simulation->sound_scene);
+  *out = simulation.release();
+}
+
+}  // namespace
+
 sp_result sp_simulation_create(const sp_scene* scene, const char* config_json, sp_backend backend,
                                sp_simulation** out) noexcept {
   return guarded([&] {
-    const char* fn = "sp_simulation_create";
-    require_live(HandleKind::Scene, scene, fn, "scene");
-    require(out != nullptr, fn, "out is NULL");
-    sp::SimulatorSettings settings;
-    settings.backend = sp::capi::backend_choice(backend, fn);
-    auto simulation = std::make_unique<sp_simulation>();
-    simulation->simulator = unwrap(sp::create_simulator(sp::capi::world_from(*scene, config_json), settings));
-    simulation->sound_scene.scene = &simulation->simulator->scene();
-    sp::capi::register_handle(HandleKind::Simulation, simulation.get(), &simulation->sound_scene);
-    *out = simulation.release();
+    sp_simulation_options options;
+    sp_simulation_options_init(&options);
+    options.backend = backend;
+    create_simulation(scene, config_json, options, out, "sp_simulation_create");
+  });
+}
+
+void sp_simulation_options_init(sp_simulation_options* options) noexcept {
+  if (options == nullptr) return;
+  *options = sp_simulation_options{};
+  options->backend = SP_BACKEND_AUTO;
+  options->memory_budget_bytes = sp::kDefaultMemoryBudgetBytes;
+}
+
+sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* config_json,
+                                            const sp_simulation_options* options, sp_simulation** out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_simulation_create_with_options";
+    require(options != nullptr, fn, "options is NULL");
+    create_simulation(scene, config_json, *options, out, fn);
   });
 }
 
