@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages soundpaint builds and tests with, if any is
-# missing. Needs root (or sudo).
+# missing. Needs root (or sudo). `install-deps.sh fuzz` adds what
+# scripts/fuzz.sh needs: clang, and the libFuzzer and sanitizer runtimes
+# (libclang-rt-14-dev, only recommended by clang, so named here).
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,9 @@ packages=(
   libgtest-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
 )
+if [ "${1:-}" = fuzz ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
