@@ -6,7 +6,7 @@
 // The rays are the emitted rays of consecutive steps at --budget rays per
 // step, i.e. the casts of the backends' first wavefront iteration: origin =
 // source position, direction = sp_emission_direction, (tmin, tmax] =
-// (sp_cast_tmin, sp_cast_tmax) = (0, sp_active_reach), computed here with
+// (0, sp_active_reach), computed here with
 // plan_step and sp_emit_ray as the backends do. Both casters run on the same
 // thread pool (the CPU backend's), in chunks of 64 rays; Embree as one
 // rtcIntersect1 per ray and as rtcIntersect16 packets. Before timing, Embree's
@@ -106,7 +106,7 @@ std::vector<CastRay> emitted_rays(const sp::World& world, std::size_t count) {
       const StepSource& source = plan.sources[slot];
       for (std::uint32_t i = source.first_ray; i < source.first_ray + source.ray_count && rays.size() < count; ++i) {
         const RayState ray = sp_emit_ray(source, slot, i, params.seed, params.step);
-        rays.push_back({sp_cast_origin(ray), sp_cast_tmin(ray), ray.dir, sp_cast_tmax(ray, params)});
+        rays.push_back({ray.origin, 0.0f, ray.dir, sp_active_reach(ray, params)});
       }
     }
   }
@@ -196,7 +196,7 @@ int run(const CommandLine& cli, const Options& options) {
       settings.threads = build_threads;
       std::vector<double> build_ms;
       for (std::uint32_t r = 0; r < options.build_runs; ++r)
-        build_ms.push_back(sp::build_bvh(scene.vertices, scene.triangle_layers, settings).build_ms);
+        build_ms.push_back(sp::build_bvh(scene.vertices, scene.triangle_layers, {}, settings).build_ms);
       const unsigned used = build_threads ? build_threads : std::max(1u, std::thread::hardware_concurrency());
       builds.push_back({{"builder", "soundpaint"}, {"threads", used}, {"ms", sp::median(build_ms)}});
       std::printf("  BVH build  soundpaint (binned SAH, %u thread%s) %*.2f ms\n", used, used == 1 ? "" : "s",

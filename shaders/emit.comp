@@ -14,11 +14,13 @@ void main() {
     control.queues[0].group_count_x = (total + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
     control.queues[0].group_count_y = 1u;
     control.queues[0].group_count_z = 1u;
-    control.queues[0].count = total;
+    control.queues[0].active_count = total;
+    control.queues[0].resolving_count = 0u;
     control.queues[1].group_count_x = 0u;
     control.queues[1].group_count_y = 1u;
     control.queues[1].group_count_z = 1u;
-    control.queues[1].count = 0u;
+    control.queues[1].active_count = 0u;
+    control.queues[1].resolving_count = 0u;
     control.step_indicators = 0u;
     control.step_casts = 0u;
   }

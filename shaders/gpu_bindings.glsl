@@ -13,7 +13,7 @@ layout(std430, binding = SP_BINDING_STEP_INPUT) readonly buffer StepInputBuffer 
   StepSource step_sources[];
 };
 layout(std430, binding = SP_BINDING_RAYS) buffer RaysBuffer { RayState rays[]; };
-layout(std430, binding = SP_BINDING_HITS) buffer HitsBuffer { HitInfo hits[]; };
+layout(std430, binding = SP_BINDING_HITS) buffer HitsBuffer { CastResult hits[]; };
 layout(std430, binding = SP_BINDING_QUEUES) buffer QueuesBuffer { uint queue_entries[]; };
 layout(std430, binding = SP_BINDING_CONTROL) buffer ControlBuffer { Control control; };
 layout(std430, binding = SP_BINDING_RING) writeonly buffer RingBuffer { Indicator ring[]; };
@@ -22,14 +22,35 @@ layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint count
 
 layout(push_constant) uniform Push { WavefrontPush push; };
 
-// Appends `value` to queue `queue` when `append`, with one atomic per
-// subgroup. Must be reached by the whole subgroup (uniform control flow).
-void append_to_queue(uint queue, bool append, uint value) {
-  uvec4 ballot = subgroupBallot(append);
-  uint total = subgroupBallotBitCount(ballot);
-  if (total == 0u) return;
-  uint base = 0u;
-  if (subgroupElect()) base = atomicAdd(control.queues[queue].count, total);
-  base = subgroupBroadcastFirst(base);
-  if (append) queue_entries[queue * push.max_rays + base + subgroupBallotExclusiveBitCount(ballot)] = value;
+// Entries of queue `queue` (see QueueArgs): Active rays, then resolving ones.
+uint queue_length(uint queue) { return control.queues[queue].active_count + control.queues[queue].resolving_count; }
+uint queue_entry(uint queue, uint i) {
+  uint front = control.queues[queue].active_count;
+  uint slot = i < front ? i : push.max_rays - 1u - (i - front);
+  return queue_entries[queue * push.max_rays + slot];
+}
+
+// Appends `value` to queue `queue` when `append`: at its front when
+// `resolving` is false, at its back when true; one atomic per subgroup and
+// end. Must be reached by the whole subgroup (uniform control flow).
+void append_to_queue(uint queue, bool append, bool resolving, uint value) {
+  uvec4 front = subgroupBallot(append && !resolving);
+  uvec4 back = subgroupBallot(append && resolving);
+  uint front_total = subgroupBallotBitCount(front);
+  uint back_total = subgroupBallotBitCount(back);
+  uint front_base = 0u;
+  uint back_base = 0u;
+  if (subgroupElect()) {
+    if (front_total > 0u) front_base = atomicAdd(control.queues[queue].active_count, front_total);
+    if (back_total > 0u) back_base = atomicAdd(control.queues[queue].resolving_count, back_total);
+  }
+  front_base = subgroupBroadcastFirst(front_base);
+  back_base = subgroupBroadcastFirst(back_base);
+  if (append && !resolving) {
+    queue_entries[queue * push.max_rays + front_base + subgroupBallotExclusiveBitCount(front)] = value;
+  }
+  if (append && resolving) {
+    uint j = back_base + subgroupBallotExclusiveBitCount(back);
+    queue_entries[queue * push.max_rays + push.max_rays - 1u - j] = value;
+  }
 }

@@ -8,53 +8,58 @@
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
-void count_event(uint layer, uint which) { atomicAdd(counters[layer * SP_COUNTERS_PER_LAYER + which], 1u); }
+void count_event(uint layer, uint slot) { atomicAdd(counters[layer * SP_COUNTERS_PER_LAYER + slot], 1u); }
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint queue_out = 1u - push.queue_in;
-  bool valid = i < control.queues[push.queue_in].count;
+  bool valid = i < queue_length(push.queue_in);
   bool alive = false;
-  bool has_indicator = false;
+  bool resolving = false;
+  uint made = 0u;  // indicators this ray wrote: 0, 1, or 2 (a sheet's hit and exit)
   uint ray_index = 0u;
   Indicator indicator;
+  Indicator sheet_exit;
   if (valid) {
-    ray_index = queue_entries[push.queue_in * push.max_rays + i];
+    ray_index = queue_entry(push.queue_in, i);
     RayState r = rays[ray_index];
-    HitInfo hit = hits[ray_index];
+    CastResult found = hits[ray_index];
     // On a miss the model reads no triangle field but the layer index the
     // caller passes; triangle 0 keeps that index in range.
-    BvhTriangle tri = bvh_triangles[hit.triangle != SP_INVALID ? hit.triangle : 0u];
+    BvhTriangle tri = bvh_triangles[found.triangle != SP_INVALID ? found.triangle : 0u];
     StepSource source = step_sources[r.source];
     uint outcome;
     if (r.state == SP_RAY_ACTIVE) {
-      outcome = sp_resolve_active(r, hit, tri, layers[tri.layer], source, step_input.params, indicator);
-      if ((outcome & SP_OUTCOME_HIT) != 0u) count_event(tri.layer, 0u);
-      if ((outcome & SP_OUTCOME_REFLECT) != 0u) count_event(tri.layer, 1u);
-      if ((outcome & SP_OUTCOME_PENETRATE) != 0u) count_event(tri.layer, 2u);
+      outcome = sp_resolve_active(r, found, tri, layers[tri.layer], source, step_input.params, indicator, sheet_exit);
+      if ((outcome & SP_OUTCOME_HIT) != 0u) count_event(tri.layer, SP_COUNTER_HITS);
+      if ((outcome & SP_OUTCOME_REFLECT) != 0u) count_event(tri.layer, SP_COUNTER_REFLECTIONS);
+      if ((outcome & SP_OUTCOME_PENETRATE) != 0u) count_event(tri.layer, SP_COUNTER_PENETRATIONS);
+      if ((outcome & SP_OUTCOME_BACK_FACE) != 0u) count_event(tri.layer, SP_COUNTER_BACK_FACE_HITS);
     } else {
-      uint entry_layer = r.entry_layer;
-      outcome = sp_resolve_backcast(r, hit, tri, layers[entry_layer], source, step_input.params, indicator);
-      if ((outcome & SP_OUTCOME_BACKCAST_MISS) != 0u) count_event(entry_layer, 3u);
+      outcome = sp_resolve_backcast(r, found, tri, source, step_input.params, indicator);
+      if ((outcome & SP_OUTCOME_BACKCAST_MISS) != 0u) count_event(r.entry_layer, SP_COUNTER_BACKCAST_MISSES);
     }
     rays[ray_index] = r;
     alive = r.state != SP_RAY_DEAD;
-    has_indicator = (outcome & SP_OUTCOME_INDICATOR) != 0u;
+    resolving = r.state == SP_RAY_RESOLVING;
+    made = (outcome & SP_OUTCOME_INDICATOR) != 0u ? ((outcome & SP_OUTCOME_SHEET_EXIT) != 0u ? 2u : 1u) : 0u;
   }
 
   // Indicators: one atomic per subgroup reserves slots in the step's
   // capture list; the ring slot follows from the step's ring head.
-  uvec4 ballot = subgroupBallot(has_indicator);
-  uint total = subgroupBallotBitCount(ballot);
+  uint total = subgroupAdd(made);
   if (total > 0u) {
     uint base = 0u;
     if (subgroupElect()) base = atomicAdd(control.step_indicators, total);
-    base = subgroupBroadcastFirst(base);
-    if (has_indicator) {
-      uint k = base + subgroupBallotExclusiveBitCount(ballot);
-      capture[k] = indicator;
-      ring[(control.ring_head + k) % step_input.ring_capacity] = indicator;
+    base = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(made);
+    if (made > 0u) {
+      capture[base] = indicator;
+      ring[(control.ring_head + base) % step_input.ring_capacity] = indicator;
+    }
+    if (made > 1u) {
+      capture[base + 1u] = sheet_exit;
+      ring[(control.ring_head + base + 1u) % step_input.ring_capacity] = sheet_exit;
     }
   }
-  append_to_queue(queue_out, alive, ray_index);
+  append_to_queue(queue_out, alive, resolving, ray_index);
 }

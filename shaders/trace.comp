@@ -1,7 +1,8 @@
 #version 460
-// Stage (b)/(d): one closest-hit query per queued ray -- the forward cast of
-// an Active ray or the backcast of a ResolvingPenetration ray (both are the
-// same BVH query on a different segment, so one dispatch serves both).
+// Stage (b)/(d): one BVH query per queued ray -- the forward cast of an
+// Active ray (closest hit), or the matter query of a ResolvingPenetration ray
+// (the nearest faces behind p_in, then where it leaves matter: sp_matter.h).
+// Both walk the same BVH, so one dispatch serves both.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_traverse.h"
@@ -11,11 +12,20 @@ layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  bool valid = i < control.queues[push.queue_in].count;
+  bool valid = i < queue_length(push.queue_in);
   if (valid) {
-    uint ray_index = queue_entries[push.queue_in * push.max_rays + i];
+    uint ray_index = queue_entry(push.queue_in, i);
     RayState r = rays[ray_index];
-    hits[ray_index] = sp_closest_hit(sp_cast_origin(r), r.dir, sp_cast_tmin(r), sp_cast_tmax(r, step_input.params));
+    CastResult found;
+    if (r.state == SP_RAY_RESOLVING) {
+      HitList list;
+      sp_nearest_hits(r.entry, r.dir, sp_matter_tmin(), step_input.params.max_wall_thickness, list);
+      found = sp_find_exit(list, r.entry_triangle);
+    } else {
+      HitInfo hit = sp_closest_hit(r.origin, r.dir, 0.0f, sp_active_reach(r, step_input.params));
+      found = CastResult(hit.t, hit.triangle, 0.0f, 0u);
+    }
+    hits[ray_index] = found;
   }
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_casts, casts);

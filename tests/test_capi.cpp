@@ -26,11 +26,12 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 std::string last_error() { return sp_last_error_message(); }
 
-// A big two-sided quad on the plane z = 1: |x|, |y| <= kHalf.
+// A big quad on the plane z = 1: |x|, |y| <= kHalf, its front (counter-
+// clockwise side) towards the source at the origin, as a wall's is.
 constexpr float kHalf = 10.0f;
 const std::vector<float> kQuad = {
-    -kHalf, -kHalf, 1.0f, kHalf, -kHalf, 1.0f, kHalf, kHalf, 1.0f,   //
-    -kHalf, -kHalf, 1.0f, kHalf, kHalf,  1.0f, -kHalf, kHalf, 1.0f,  //
+    -kHalf, -kHalf, 1.0f, -kHalf, kHalf, 1.0f, kHalf, kHalf, 1.0f,  //
+    -kHalf, -kHalf, 1.0f, kHalf,  kHalf, 1.0f, kHalf, -kHalf, 1.0f,  //
 };
 const std::vector<std::uint32_t> kQuadLayers = {0, 0};
 const char* const kLayerNames[] = {"concrete"};
@@ -280,7 +281,8 @@ const char* const kRoomConfig = R"({
   "listener": { "position": [0, 1.5, 0] }
 })";
 
-// Two triangles per face, six faces, one layer.
+// Two triangles per face, six faces, one layer; every face's front towards
+// the inside of the room, where the air is.
 std::vector<float> room_vertices() {
   std::vector<float> v;
   auto corner = [](int ix, int iy, int iz) {
@@ -291,11 +293,11 @@ std::vector<float> room_vertices() {
     for (const auto* p : {&a, &b, &c, &a, &c, &d}) v.insert(v.end(), p->begin(), p->end());
   };
   quad(corner(0, 0, 0), corner(0, 1, 0), corner(0, 1, 1), corner(0, 0, 1));  // x = min
-  quad(corner(1, 0, 0), corner(1, 1, 0), corner(1, 1, 1), corner(1, 0, 1));  // x = max
-  quad(corner(0, 0, 0), corner(1, 0, 0), corner(1, 0, 1), corner(0, 0, 1));  // y = min
+  quad(corner(1, 0, 0), corner(1, 0, 1), corner(1, 1, 1), corner(1, 1, 0));  // x = max
+  quad(corner(0, 0, 0), corner(0, 0, 1), corner(1, 0, 1), corner(1, 0, 0));  // y = min
   quad(corner(0, 1, 0), corner(1, 1, 0), corner(1, 1, 1), corner(0, 1, 1));  // y = max
   quad(corner(0, 0, 0), corner(1, 0, 0), corner(1, 1, 0), corner(0, 1, 0));  // z = min
-  quad(corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1), corner(0, 1, 1));  // z = max
+  quad(corner(0, 0, 1), corner(0, 1, 1), corner(1, 1, 1), corner(1, 0, 1));  // z = max
   return v;
 }
 

@@ -29,12 +29,13 @@ class GpuParity : public test::GpuTest {
     Trace cpu = run(scene, config, Backend::Cpu, steps);
     Trace gpu = run(scene, config, Backend::Gpu, steps);
     ASSERT_GT(cpu.indicators.size(), 100u) << "scenario too small to compare";
-    using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>;
+    // kind too: a sheet's hit and exit share their ray and iteration.
+    using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
     std::map<Key, const Indicator*> by_key;
-    for (const Indicator& ind : gpu.indicators) by_key[{ind.step, ind.iteration, ind.ray_index}] = &ind;
+    for (const Indicator& ind : gpu.indicators) by_key[{ind.step, ind.iteration, ind.ray_index, ind.kind}] = &ind;
     std::size_t identical = 0;
     for (const Indicator& c : cpu.indicators) {
-      auto it = by_key.find({c.step, c.iteration, c.ray_index});
+      auto it = by_key.find({c.step, c.iteration, c.ray_index, c.kind});
       if (it == by_key.end()) continue;
       const Indicator& g = *it->second;
       bool same = c.kind == g.kind && c.source_id == g.source_id && c.bounces == g.bounces &&
@@ -60,6 +61,7 @@ class GpuParity : public test::GpuTest {
       EXPECT_NEAR(double(b.reflections), double(a.reflections), 0.001 * double(a.reflections) + 1) << l;
       EXPECT_NEAR(double(b.penetrations), double(a.penetrations), 0.001 * double(a.penetrations) + 1) << l;
       EXPECT_NEAR(double(b.backcast_misses), double(a.backcast_misses), 0.001 * double(a.backcast_misses) + 1) << l;
+      EXPECT_NEAR(double(b.back_face_hits), double(a.back_face_hits), 0.001 * double(a.back_face_hits) + 1) << l;
     }
   }
 };

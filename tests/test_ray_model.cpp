@@ -6,49 +6,13 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "sim/cpu_tracer.h"
-#include "sim/step_plan.h"
-#include "sp_ray_model.h"
 #include "support/scene_builder.h"
+#include "support/single_ray.h"
 
 namespace sp {
 namespace {
 
-using shader::RayState;
-
-// A world around hand-built geometry; one layer table entry per layer.
-struct Fixture {
-  Scene scene;
-  Config config;
-  World world;
-  std::vector<shader::LayerAcoustics> layers;
-  std::vector<shader::StepSource> sources;
-
-  void finish() {
-    config.listener_position = glm::vec3(0.0f);
-    world = make_world(scene, config).value();
-    layers = make_layer_table(world);
-    shader::StepSource s{};
-    s.position = glm::vec3(0.0f);
-    s.max_distance = 100.0f;
-    s.loudness = 1.0f;
-    s.color = {1, 0, 0};
-    s.intensity = 0.5f;
-    sources = {s};
-  }
-
-  // Traces one ray from `origin` along `dir` (normalised here).
-  std::vector<Indicator> trace(glm::vec3 origin, glm::vec3 dir, TraceCounters& counters) {
-    TraceContext context{&world.bvh, layers, sources, make_sim_params(config, 0)};
-    RayState ray = shader::sp_emit_ray(sources[0], 0, 0, config.seed, 0);
-    ray.origin = origin;
-    ray.dir = glm::normalize(dir);
-    counters.layers.assign(world.layer_names.size(), {});
-    std::vector<Indicator> out;
-    trace_ray(context, ray, out, counters);
-    return out;
-  }
-};
+using Fixture = test::SingleRay;
 
 // A wall of `thickness` between x = 1 and x = 1 + thickness that always
 // lets rays through (rho_ref = 0), in air that costs nothing.

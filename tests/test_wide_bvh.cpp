@@ -182,12 +182,32 @@ struct Agreement {
   std::size_t hits = 0;
 };
 
+// The matter query's lists, entry by entry, bit for bit.
+bool same_list(const sp::shader::HitList& a, const sp::shader::HitList& b) {
+  if (a.count != b.count) return false;
+  for (std::uint32_t k = 0; k < a.count; ++k)
+    if (a.triangle[k] != b.triangle[k] || a.scene[k] != b.scene[k] ||
+        std::bit_cast<std::uint32_t>(a.t[k]) != std::bit_cast<std::uint32_t>(b.t[k]))
+      return false;
+  return true;
+}
+
 // Every ray: wide == binary, triangle and t bit for bit; closest_hit (which
-// dispatches to the wide tree) says the same.
+// dispatches to the wide tree) says the same. The same for the nearest-hits
+// list of the matter query.
 Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
   Agreement agreement;
   std::size_t failures = 0;
+  std::size_t list_failures = 0;
   for (const Ray& r : rays) {
+    const sp::shader::HitList wide_list = sp::nearest_hits(bvh, r.origin, r.dir, r.tmin, r.tmax);
+    sp::shader::HitList binary_list;
+    sp::shader::sp_nearest_hits(bvh.nodes.data(), bvh.triangles.data(), r.origin, r.dir, r.tmin, r.tmax, binary_list);
+    if (!same_list(wide_list, binary_list) && ++list_failures <= 5) {
+      ADD_FAILURE() << std::hexfloat << "nearest hits of ray o=(" << r.origin.x << ", " << r.origin.y << ", "
+                    << r.origin.z << ") d=(" << r.dir.x << ", " << r.dir.y << ", " << r.dir.z << ") t in (" << r.tmin
+                    << ", " << r.tmax << "]: wide " << wide_list.count << " hits, binary " << binary_list.count;
+    }
     const sp::HitInfo wide = sp::wide_closest_hit(*bvh.wide, bvh, r.origin, r.dir, r.tmin, r.tmax);
     const sp::HitInfo binary =
         sp::shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), r.origin, r.dir, r.tmin, r.tmax);
@@ -206,6 +226,7 @@ Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays
     }
   }
   EXPECT_EQ(failures, 0u) << "of " << rays.size() << " rays";
+  EXPECT_EQ(list_failures, 0u) << "nearest-hit lists, of " << rays.size() << " rays";
   return agreement;
 }
 

@@ -48,11 +48,14 @@ struct Bvh {
   std::size_t triangle_count() const { return triangles.size(); }
 };
 
-// Builds the BVH. `vertices` holds 3 per triangle; `layers` one per triangle.
+// Builds the BVH. `vertices` holds 3 per triangle; `layers` one per triangle;
+// `solids` one per triangle, the piece of surface it belongs to, which the
+// matter rules need (make_world computes it); without it (empty) every
+// triangle is a piece alone, enough for queries that are not simulations.
 // Degenerate (zero-area) triangles are kept (they never report hits).
 // Precondition: at least one triangle, finite coordinates (load_scene checks).
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
-              const BvhBuildSettings& settings = {});
+              std::span<const std::uint32_t> solids = {}, const BvhBuildSettings& settings = {});
 
 // Closest hit with distance in (tmin, tmax] along unit direction `dir`.
 // Triangles are two-sided; ties go to the lowest scene index. Traverses
@@ -60,7 +63,13 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
 // shared sp_closest_hit's (shaders/shared/sp_traverse.h), t bit for bit.
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
-// The same query by testing every triangle; for tests and validation.
+// The nearest SP_MATTER_MAX_HITS hits with distance in (tmin, tmax], sorted
+// by (t, scene index): the matter query of a penetrating ray. The answer of
+// the shared sp_nearest_hits (shaders/shared/sp_traverse.h), bit for bit.
+shader::HitList nearest_hits(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
+// The same query as closest_hit by testing every triangle; for tests and
+// validation.
 HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
 // Leaf-order entries whose contents changed, as sorted, disjoint, half-open

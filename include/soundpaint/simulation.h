@@ -44,6 +44,7 @@ struct World {
   std::vector<glm::vec3> rest_vertices;            // scene's vertices, 3 per triangle
   std::vector<std::uint32_t> triangle_instances;   // per triangle, or kStaticInstance
   std::vector<std::uint32_t> triangle_layers;      // per triangle (scene order), for rebuilds
+  std::vector<std::uint32_t> triangle_solids;      // per triangle (scene order), for rebuilds
   double build_sah_cost = 0.0;  // the BVH's absolute SAH cost after its last build (set by SoundScene)
 };
 
@@ -56,7 +57,10 @@ struct LayerCounters {
   std::uint64_t hits = 0;             // every surface hit on this layer
   std::uint64_t reflections = 0;
   std::uint64_t penetrations = 0;     // every decision to penetrate (backcast misses included)
-  std::uint64_t backcast_misses = 0;  // penetrations absorbed because thicker than W_max
+  std::uint64_t backcast_misses = 0;  // penetrations that found no way out of matter within W_max
+  // Rays in air that struck the back of a face (docs/model.md, "Matter"):
+  // a leak or winding that disagrees with the geometry. Counted in hits too.
+  std::uint64_t back_face_hits = 0;
 };
 
 // Totals over every step run so far.

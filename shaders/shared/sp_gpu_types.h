@@ -19,20 +19,34 @@
 #define SP_BINDING_COUNTERS 10
 #define SP_BINDING_COUNT 11
 
-// Per-layer counters: 4 per layer per step (hits, reflections, penetrations,
-// backcast misses), then 8 per layer of 64-bit totals as (lo, hi) pairs.
-#define SP_COUNTERS_PER_LAYER 4u
+// Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
+// order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as
+// (lo, hi) pairs.
+#define SP_COUNTER_HITS 0u
+#define SP_COUNTER_REFLECTIONS 1u
+#define SP_COUNTER_PENETRATIONS 2u
+#define SP_COUNTER_BACKCAST_MISSES 3u
+#define SP_COUNTER_BACK_FACE_HITS 4u
+#define SP_COUNTERS_PER_LAYER 5u
 
 SP_BEGIN_NAMESPACE
 
-// A work queue's VkDispatchIndirectCommand followed by its length: the
-// resolve kernel appends by bumping `count`, the prepare kernel turns count
-// into group_count_x for the next dispatch.
+// A work queue's VkDispatchIndirectCommand followed by its lengths. A queue
+// holds Active rays from its front and ResolvingPenetration rays from its
+// back, so that a dispatch over it gives each subgroup rays of one kind (the
+// matter query's longer path then costs only the subgroups that need it):
+// entry i < active_count is slot i, entry active_count + j is slot
+// max_rays - 1 - j. The resolve kernel appends by bumping one count; the
+// prepare kernel turns their sum into group_count_x for the next dispatch.
 struct QueueArgs {
   uint group_count_x;
   uint group_count_y;
   uint group_count_z;
-  uint count;
+  uint active_count;
+  uint resolving_count;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the

@@ -1,10 +1,12 @@
-// The paper's ray model (SPEC 1.2-1.4) as pure functions over RayState,
+// The paper's ray model (docs/model.md) as pure functions over RayState,
 // shared by GLSL and C++. Each wavefront iteration gives a live ray exactly
-// one cast: Active rays cast forward, ResolvingPenetration rays backcast.
+// one cast: Active rays cast forward, ResolvingPenetration rays query the
+// matter behind their entry point (sp_matter.h).
 // Paper: "Diegetic Sound Visualization", sections 4.2-4.4.
 #ifndef SP_RAY_MODEL_H
 #define SP_RAY_MODEL_H
 
+#include "sp_matter.h"
 #include "sp_random.h"
 #include "sp_types.h"
 
@@ -26,6 +28,10 @@ SP_INLINE RayState sp_emit_ray(StepSource source, uint source_slot, uint ray_ind
   r.casts = 0u;
   r.max_distance = source.max_distance;
   r.loudness = source.loudness;
+  r.entry_triangle = SP_INVALID;
+  r.pad0 = 0u;
+  r.pad1 = 0u;
+  r.pad2 = 0u;
   return r;
 }
 
@@ -39,18 +45,9 @@ SP_INLINE float sp_active_reach(RayState r, SimParams p) {
   return reach;
 }
 
-// Where an Active ray's cast starts, and where a ResolvingPenetration ray's
-// backcast segment starts: the backcast searches (SP_EPSILON, W_max] from p_in
-// for the exit face nearest to p_in (SPEC 1.3, not the paper's far-end hit).
-SP_INLINE vec3 sp_cast_origin(RayState r) {
-  return r.state == SP_RAY_RESOLVING ? r.entry : r.origin;
-}
-SP_INLINE float sp_cast_tmin(RayState r) {
-  return r.state == SP_RAY_RESOLVING ? SP_EPSILON : 0.0f;
-}
-SP_INLINE float sp_cast_tmax(RayState r, SimParams p) {
-  return r.state == SP_RAY_RESOLVING ? p.max_wall_thickness : sp_active_reach(r, p);
-}
+// The segment of a ResolvingPenetration ray's matter query: from p_in, faces
+// a touch behind it (those of a solid touching the entry face) through W_max.
+SP_INLINE float sp_matter_tmin() { return -SP_CONTACT_TOLERANCE; }
 
 SP_INLINE Indicator sp_make_indicator(uint kind, RayState r, StepSource source, vec3 position, vec3 normal,
                                       SimParams p) {
@@ -78,18 +75,20 @@ SP_INLINE vec3 sp_offset_point(vec3 p, vec3 dir, float distance) {
   return q;
 }
 
-// Resolves an Active ray's forward cast. `tri` is only read when hit.triangle
-// is valid; `layer` holds the acoustics of tri.layer. Writes `ind` when the
-// result has SP_OUTCOME_INDICATOR.
-SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, HitInfo hit, BvhTriangle tri, LayerAcoustics layer,
-                                 StepSource source, SimParams p, SP_OUT(Indicator) ind) {
+// Resolves an Active ray's forward cast. `tri` is only read when
+// found.triangle is valid; `layer` holds the acoustics of tri.layer. Writes
+// `ind` when the result has SP_OUTCOME_INDICATOR, and `sheet_exit` (the exit
+// of a sheet crossed on the spot, after `ind`) when it has
+// SP_OUTCOME_SHEET_EXIT.
+SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, LayerAcoustics layer,
+                                 StepSource source, SimParams p, SP_OUT(Indicator) ind, SP_OUT(Indicator) sheet_exit) {
   r.casts += 1u;
-  if (hit.triangle == SP_INVALID) {
+  if (found.triangle == SP_INVALID) {
     r.state = SP_RAY_DEAD;
     return 0u;
   }
-  SP_PRECISE float travelled = r.travelled + hit.t;
-  SP_PRECISE float energy = r.energy - hit.t * p.air_attenuation;
+  SP_PRECISE float travelled = r.travelled + found.t;
+  SP_PRECISE float energy = r.energy - found.t * p.air_attenuation;
   r.travelled = travelled;
   r.energy = energy;
   uint outcome = SP_OUTCOME_HIT;
@@ -97,8 +96,17 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, HitInfo hit, BvhTriangle 
     r.state = SP_RAY_DEAD;
     return outcome;
   }
-  vec3 position = sp_offset_point(r.origin, r.dir, hit.t);
-  vec3 normal = dot(tri.normal, r.dir) > 0.0f ? -tri.normal : tri.normal;  // towards the ray's side
+  // A ray in air meets fronts only; the back of a face means it is inside
+  // matter (it leaked through a crack, or the winding disagrees with the
+  // geometry). It must not go on as if in air: it is absorbed, unseen.
+  bool sheet = layer.sheet_thickness > 0.0f;
+  uint crossing = sp_crossing(tri.normal, r.dir);
+  if (!sheet && crossing == SP_CROSSING_LEAVE) {
+    r.state = SP_RAY_DEAD;
+    return outcome | SP_OUTCOME_BACK_FACE;
+  }
+  vec3 position = sp_offset_point(r.origin, r.dir, found.t);
+  vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal : tri.normal;  // towards the ray's side (a sheet's back is a front too)
   ind = sp_make_indicator(SP_INDICATOR_HIT, r, source, position, normal, p);
   outcome |= SP_OUTCOME_INDICATOR;
   uint interactions = r.bounces + r.penetrations;
@@ -121,28 +129,44 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, HitInfo hit, BvhTriangle 
     SP_PRECISE float len = sqrt(dot(mirrored, mirrored));
     r.dir = mirrored / len;
     r.origin = sp_offset_point(position, normal, SP_EPSILON);
+  } else if (sheet) {
+    // A sheet is crossed on the spot: its thickness lost, no backcast, and
+    // no air loss across it.
+    outcome |= SP_OUTCOME_PENETRATE;
+    SP_PRECISE float crossed_energy = r.energy - layer.sheet_thickness * layer.attenuation;
+    SP_PRECISE float crossed_travelled = r.travelled + layer.sheet_thickness;
+    r.energy = crossed_energy;
+    r.travelled = crossed_travelled;
+    r.penetrations += 1u;
+    if (r.energy <= p.min_energy) {
+      r.state = SP_RAY_DEAD;
+      return outcome;
+    }
+    sheet_exit = sp_make_indicator(SP_INDICATOR_EXIT, r, source, position, -normal, p);
+    outcome |= SP_OUTCOME_SHEET_EXIT;
+    r.origin = sp_offset_point(position, r.dir, SP_EPSILON);
   } else {
     outcome |= SP_OUTCOME_PENETRATE;
     r.entry = position;
     r.entry_layer = tri.layer;
-    r.origin = sp_offset_point(position, r.dir, p.max_wall_thickness);  // the forward step
+    r.entry_triangle = found.triangle;
+    r.origin = sp_offset_point(position, r.dir, p.max_wall_thickness);  // the paper's forward step
     r.state = SP_RAY_RESOLVING;
   }
   return outcome;
 }
 
-// Resolves a ResolvingPenetration ray's backcast. `entry_layer` holds the
-// acoustics of r.entry_layer; `tri` is the exit face when hit is valid.
-SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, HitInfo hit, BvhTriangle tri, LayerAcoustics entry_layer,
-                                   StepSource source, SimParams p, SP_OUT(Indicator) ind) {
+// Resolves a ResolvingPenetration ray's matter query (sp_find_exit); `tri`
+// is the exit face when found.triangle is valid.
+SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, StepSource source,
+                                   SimParams p, SP_OUT(Indicator) ind) {
   r.casts += 1u;
-  if (hit.triangle == SP_INVALID) {  // thicker than W_max: absorbed
+  if (found.triangle == SP_INVALID) {  // no way out within W_max: absorbed
     r.state = SP_RAY_DEAD;
     return SP_OUTCOME_BACKCAST_MISS;
   }
-  float thickness = hit.t;  // == W_max - d_hit of the paper
-  SP_PRECISE float energy = r.energy - thickness * entry_layer.attenuation;
-  SP_PRECISE float travelled = r.travelled + thickness;
+  SP_PRECISE float energy = r.energy - found.matter_loss;
+  SP_PRECISE float travelled = r.travelled + found.t;
   r.energy = energy;
   r.travelled = travelled;
   r.penetrations += 1u;
@@ -150,8 +174,10 @@ SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, HitInfo hit, BvhTriangl
     r.state = SP_RAY_DEAD;
     return 0u;
   }
-  vec3 position = sp_offset_point(r.entry, r.dir, thickness);
-  vec3 normal = dot(tri.normal, r.dir) < 0.0f ? -tri.normal : tri.normal;  // towards where it leaves to
+  vec3 position = sp_offset_point(r.entry, r.dir, found.t);
+  // Towards where it leaves to: the exit face's front, unless only a
+  // disagreeing winding let the ray out.
+  vec3 normal = sp_crossing(tri.normal, r.dir) == SP_CROSSING_ENTER ? -tri.normal : tri.normal;
   ind = sp_make_indicator(SP_INDICATOR_EXIT, r, source, position, normal, p);
   r.state = SP_RAY_ACTIVE;
   r.origin = sp_offset_point(position, r.dir, SP_EPSILON);

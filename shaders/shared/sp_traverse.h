@@ -180,6 +180,105 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   return best;
 }
 
+// SP_CROSSING_* of a face with unit front normal `normal` for a ray along
+// `dir`: entering when its front faces the ray.
+SP_INLINE uint sp_crossing(vec3 normal, vec3 dir) {
+  SP_PRECISE float s = normal.x * dir.x + normal.y * dir.y + normal.z * dir.z;
+  return s < 0.0f ? SP_CROSSING_ENTER : (s > 0.0f ? SP_CROSSING_LEAVE : SP_CROSSING_NONE);
+}
+
+// Inserts (t, triangle, scene, key) into the sorted list when it is among
+// the SP_MATTER_MAX_HITS best by (t, scene index); the worst falls off a
+// full list. A face crossed like a listed one of the same solid within
+// SP_CONTACT_TOLERANCE of it is that face's twin across a shared edge (or a
+// fold thinner than the tolerance): it is left out.
+SP_INLINE void sp_hit_list_offer(SP_INOUT(HitList) list, float t, uint triangle, uint scene, uint key) {
+  if ((key & 3u) != SP_CROSSING_NONE) {
+    for (uint e = 0u; e < list.count; ++e) {
+      SP_PRECISE float gap = abs(list.t[e] - t);
+      if (list.key[e] == key && gap <= SP_CONTACT_TOLERANCE) return;
+    }
+  }
+  uint at = list.count;
+  if (at == SP_MATTER_MAX_HITS) {
+    if (!sp_better_hit(t, scene, list.t[at - 1u], list.scene[at - 1u])) return;
+    at -= 1u;
+  } else {
+    list.count += 1u;
+  }
+  while (at > 0u && sp_better_hit(t, scene, list.t[at - 1u], list.scene[at - 1u])) {
+    list.t[at] = list.t[at - 1u];
+    list.triangle[at] = list.triangle[at - 1u];
+    list.scene[at] = list.scene[at - 1u];
+    list.key[at] = list.key[at - 1u];
+    at -= 1u;
+  }
+  list.t[at] = t;
+  list.triangle[at] = triangle;
+  list.scene[at] = scene;
+  list.key[at] = key;
+}
+
+// Far limit of the boxes still worth visiting: the worst listed hit once the
+// list is full (a hit exactly there may still win on scene index), else tmax.
+SP_INLINE float sp_hit_list_limit(uint count, float worst, float tmax) {
+  return count == SP_MATTER_MAX_HITS ? worst : tmax;
+}
+
+// The SP_MATTER_MAX_HITS nearest hits with distance in (tmin, tmax], sorted
+// by (t, scene index), twins across shared edges once (sp_hit_list_offer);
+// tmin may be negative. The same walk as sp_closest_hit with the list's
+// limit in place of the best hit; written out twice because GLSL has no
+// templates, and the closest hit, every ray's hot path, must not carry the
+// list's registers.
+SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmin, float tmax, SP_OUT(HitList) list) {
+  RayQuery q = sp_make_query(origin, dir, tmin, tmax);
+  list.count = 0u;
+  list.t[SP_MATTER_MAX_HITS - 1u] = tmax;  // read by the limit before the list is full
+  uint stack[SP_BVH_MAX_DEPTH];
+  uint stack_size = 0u;
+  uint node_index = 0u;
+  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, tmax) == SP_FAR) return;
+
+  for (;;) {
+    BvhNode node = bvh_nodes[node_index];
+    if (node.count > 0u) {
+      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
+        BvhTriangle tri = bvh_triangles[i];
+        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+        if (t < SP_FAR && t > q.tmin && t <= q.tmax)
+          sp_hit_list_offer(list, t, i, tri.scene_index, tri.solid * 4u + sp_crossing(tri.normal, q.dir));
+      }
+    } else {
+      uint left = node.left_or_first;
+      float limit = sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax);
+      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, limit);
+      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, limit);
+      if (t_left != SP_FAR || t_right != SP_FAR) {
+        if (t_left == SP_FAR) {
+          node_index = left + 1u;
+        } else if (t_right == SP_FAR) {
+          node_index = left;
+        } else {
+          bool left_first = t_left <= t_right;
+          node_index = left_first ? left : left + 1u;
+          stack[stack_size] = left_first ? left + 1u : left;
+          stack_size += 1u;
+        }
+        continue;
+      }
+    }
+    bool found = false;
+    while (stack_size > 0u && !found) {
+      stack_size -= 1u;
+      node_index = stack[stack_size];
+      found = sp_intersect_box(q, bvh_nodes[node_index].bmin, bvh_nodes[node_index].bmax,
+                               sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax)) != SP_FAR;
+    }
+    if (!found) break;
+  }
+}
+
 SP_END_NAMESPACE
 
 #endif  // SP_TRAVERSE_H

@@ -17,6 +17,24 @@
 // Surface offset (metres) applied after reflections and exits, and the near
 // limit of the backcast, so a ray never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f
+// Faces closer than this along a ray (metres) are crossed together: where two
+// solids touch, the leaving face of one and the entering face of the next
+// lie at the same distance up to rounding, and that plane must never be taken
+// for a way out of matter (docs/model.md, "Matter"). 1 mm is far above the
+// rounding of hit distances in a level a few hundred metres across and far
+// below any gap that matters to sound.
+#define SP_CONTACT_TOLERANCE 1.0e-3f
+// Faces one matter query lists (the nearest ones within W_max of p_in; the
+// two triangles of one surface met through their shared edge count once).
+// Touching and overlapping solids put a handful of faces within W_max; a
+// query that finds more and no way out among the listed ones counts as a
+// backcast miss, which bounds the work per penetration. Kept small because
+// a GPU holds the list per thread.
+#define SP_MATTER_MAX_HITS 8
+// Solids whose layers a penetrating ray remembers at once (overlapping
+// solids lose at the largest attenuation among them). Deeper nesting is
+// still counted; a fifth solid's layer is not remembered.
+#define SP_MATTER_STACK 4
 // "No hit" marker in HitInfo.triangle and BvhNode links.
 #define SP_INVALID 0xFFFFFFFFu
 // A distance larger than any scene; used instead of +inf, which GLSL lacks.
@@ -31,6 +49,12 @@
 #define SP_INDICATOR_HIT 0u
 #define SP_INDICATOR_EXIT 1u
 
+// How a ray crosses a face (HitList::key's low two bits): its front faces
+// the ray (entering), faces away (leaving), or the ray runs in its plane.
+#define SP_CROSSING_NONE 0u
+#define SP_CROSSING_ENTER 1u
+#define SP_CROSSING_LEAVE 2u
+
 // Outcome bits returned by the ray-model resolve functions; the caller turns
 // them into per-layer statistics.
 #define SP_OUTCOME_HIT 1u
@@ -38,6 +62,11 @@
 #define SP_OUTCOME_REFLECT 4u
 #define SP_OUTCOME_PENETRATE 8u
 #define SP_OUTCOME_BACKCAST_MISS 16u
+// An Active ray struck the back of a face: it was inside matter (a leak, or
+// winding that disagrees with the geometry) and is absorbed.
+#define SP_OUTCOME_BACK_FACE 32u
+// A sheet was crossed on the spot: a second indicator (the exit) was written.
+#define SP_OUTCOME_SHEET_EXIT 64u
 
 SP_BEGIN_NAMESPACE
 
@@ -54,22 +83,28 @@ struct BvhNode {
 // A triangle in BVH leaf order, 64 bytes. scene_index is its position in the
 // scene's triangle soup (ties between equal hit distances go to the lowest).
 // normal is the unit geometric normal of (v1 - v0) x (v2 - v0), precomputed on
-// the CPU so both backends reflect about bit-identical normals.
+// the CPU so both backends reflect about bit-identical normals; it points out
+// of the triangle's solid (counter-clockwise winding is the front, as in glTF).
+// solid numbers the connected piece of surface the triangle belongs to
+// (src/bvh/mesh_topology.h): faces of one solid met at one distance are the
+// same crossing, seen through an edge they share.
 struct BvhTriangle {
   vec3 v0;
   uint layer;
   vec3 v1;
   uint scene_index;
   vec3 v2;
-  uint pad0;
+  uint solid;
   vec3 normal;
-  uint pad1;
+  uint pad0;
 };
 
 // Acoustic properties of one layer (paper: rho_ref, alpha_layer).
 struct LayerAcoustics {
   float reflect_probability;  // probability of reflecting, in [0, 1]
   float attenuation;          // energy lost per metre inside the material
+  float sheet_thickness;      // > 0: the layer's faces are sheets this thick (metres); 0: faces of solids
+  uint pad0;
 };
 
 // Per-step parameters of the ray model.
@@ -96,7 +131,7 @@ struct StepSource {
   uint source_id;
 };
 
-// One ray's state between wavefront iterations, 80 bytes.
+// One ray's state between wavefront iterations, 96 bytes.
 struct RayState {
   vec3 origin;        // where the next forward cast starts
   float energy;       // E
@@ -112,6 +147,10 @@ struct RayState {
   uint casts;         // casts made so far == wavefront iteration index
   float max_distance; // D_max of its source
   float loudness;     // E0 of its source
+  uint entry_triangle;  // leaf-order index of the entry face while ResolvingPenetration
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // One indicator, 80 bytes. iteration and ray_index give the canonical order
@@ -137,6 +176,30 @@ struct Indicator {
 struct HitInfo {
   float t;
   uint triangle;
+};
+
+// What one cast found, 16 bytes. Active ray: the closest hit (matter_loss 0).
+// ResolvingPenetration ray: the exit face and its distance t from p_in, and
+// the energy the stretches of matter before it take (sum of length *
+// alpha_layer); triangle SP_INVALID when there is no way out within W_max.
+struct CastResult {
+  float t;
+  uint triangle;
+  float matter_loss;
+  uint pad0;
+};
+
+// The nearest faces along a segment, sorted by (t, scene index): what a
+// matter query sees. count == SP_MATTER_MAX_HITS means there may be more
+// beyond t[SP_MATTER_MAX_HITS - 1]. key = solid * 4 + crossing code
+// (SP_CROSSING_*), so that the two triangles of one surface met through
+// their shared edge, alike in both, take one entry.
+struct HitList {
+  float t[SP_MATTER_MAX_HITS];
+  uint triangle[SP_MATTER_MAX_HITS];
+  uint scene[SP_MATTER_MAX_HITS];
+  uint key[SP_MATTER_MAX_HITS];
+  uint count;
 };
 
 SP_END_NAMESPACE

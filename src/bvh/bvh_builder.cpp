@@ -438,7 +438,7 @@ class Builder {
 }  // namespace
 
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
-              const BvhBuildSettings& settings) {
+              std::span<const std::uint32_t> solids, const BvhBuildSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
   assert(vertices.size() == 3u * layers.size() && "3 vertices and 1 layer per triangle");
   // Never read past either array, even if the precondition is broken.
@@ -462,7 +462,8 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
         __builtin_prefetch(ahead + 2);
       }
       const std::uint32_t source = order[i];
-      store(i, make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source));
+      const std::uint32_t solid = source < solids.size() ? solids[source] : source;
+      store(i, make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source, solid));
     }
   };
   if (builder.parallel(count)) {

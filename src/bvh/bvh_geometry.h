@@ -61,10 +61,11 @@ inline bool is_degenerate(const glm::vec3* v) { return triangle_cross(v) == glm:
 // watertight test's rounded shear, and would report hits with no normal to
 // reflect about. Three equal vertices make u = v = w = 0 exactly, so det == 0.
 // The normal is the unit cross product, or (0, 0, 0) for zero area.
-inline BvhTriangle make_bvh_triangle(const glm::vec3* v, std::uint32_t layer, std::uint32_t scene_index) {
+inline BvhTriangle make_bvh_triangle(const glm::vec3* v, std::uint32_t layer, std::uint32_t scene_index,
+                                     std::uint32_t solid) {
   const glm::dvec3 n = triangle_cross(v);
-  if (n == glm::dvec3(0.0)) return BvhTriangle{v[0], layer, v[0], scene_index, v[0], 0u, glm::vec3(0.0f), 0u};
-  return BvhTriangle{v[0], layer, v[1], scene_index, v[2], 0u, glm::vec3(n * (1.0 / glm::length(n))), 0u};
+  if (n == glm::dvec3(0.0)) return BvhTriangle{v[0], layer, v[0], scene_index, v[0], solid, glm::vec3(0.0f), 0u};
+  return BvhTriangle{v[0], layer, v[1], scene_index, v[2], solid, glm::vec3(n * (1.0 / glm::length(n))), 0u};
 }
 
 }  // namespace sp

@@ -15,6 +15,14 @@ HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
   return shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
 }
 
+shader::HitList nearest_hits(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  shader::HitList list{};
+  if (bvh.nodes.empty()) return list;
+  if (bvh.wide) return wide_nearest_hits(*bvh.wide, bvh, origin, dir, tmin, tmax);
+  shader::sp_nearest_hits(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax, list);
+  return list;
+}
+
 HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   // Same start state and acceptance rule as sp_closest_hit, so that only the

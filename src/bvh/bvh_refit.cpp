@@ -85,7 +85,7 @@ std::vector<BvhTriangle> refit_triangles(const std::vector<BvhTriangle>& old, st
   std::vector<BvhTriangle> fresh;
   fresh.reserve(old.size());
   for (const BvhTriangle& t : old)
-    fresh.push_back(make_bvh_triangle(&vertices[3u * std::size_t{t.scene_index}], t.layer, t.scene_index));
+    fresh.push_back(make_bvh_triangle(&vertices[3u * std::size_t{t.scene_index}], t.layer, t.scene_index, t.solid));
   return fresh;
 }
 

@@ -219,25 +219,46 @@ inline std::uint32_t first_pair(const WideRay& r, const WideNode& node) {
   return parent[0] <= parent[2] ? 0u : 2u;
 }
 
+// What a walk collects. Its limit() is the farthest distance still worth
+// visiting, which only ever shrinks; offer() takes a hit with t in
+// (tmin, limit()].
+
 // The best hit so far, with sp_closest_hit's acceptance rule.
 struct Best {
   HitInfo hit;
   const BvhTriangle* triangles;
 
+  float limit() const { return hit.t; }
   std::uint32_t scene(std::uint32_t triangle) const {
     return triangle == SP_INVALID ? SP_INVALID : triangles[triangle].scene_index;
   }
-  // (t, triangle) with t <= hit.t already checked; the scene index is read
-  // only for an exact tie, where sp_better_hit needs it.
+  // The scene index is read only for an exact tie, where sp_better_hit
+  // needs it.
   void offer(float t, std::uint32_t triangle) {
     if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle};
   }
 };
 
+// The nearest hits, with sp_nearest_hits' list, keys and limit.
+struct Nearest {
+  shader::HitList list;
+  float tmax;
+  glm::vec3 dir;
+  const BvhTriangle* triangles;
+
+  float limit() const { return shader::sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax); }
+  void offer(float t, std::uint32_t triangle) {
+    const BvhTriangle& tri = triangles[triangle];
+    shader::sp_hit_list_offer(list, t, triangle, tri.scene_index, tri.solid * 4u + shader::sp_crossing(tri.normal, dir));
+  }
+};
+
 // sp_intersect_triangle on `count` packets, then the acceptance window
-// (tmin, tmax] and sp_better_hit. Every line mirrors the shared function
-// operation for operation, so each lane's t is bit-identical to it.
-inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count, Best& best) {
+// (tmin, limit] and the collector's rule. Every line mirrors the shared
+// function operation for operation, so each lane's t is bit-identical to it.
+template <class Collector>
+inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count,
+                              Collector& best) {
   const Vec4 zero = splat(0.0f);
   for (const TrianglePacket* p = packets; p != packets + count; ++p) {
     // a = v0 - origin, b = v1 - origin, c = v2 - origin, in the axes kx, ky, kz.
@@ -260,19 +281,19 @@ inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, s
     const Vec4 cz = r.shear[2] * d[2][2];
     const Vec4 t_scaled = u * az + v * bz + w * cz;
     const Vec4 t = t_scaled / det;  // lanes with det == 0 are masked below
-    // t <= best.hit.t <= tmax stands for t <= tmax; the tie needs offer().
-    const Int4 candidate = ~outside & (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.hit.t));
+    // t <= limit <= tmax stands for t <= tmax; the tie needs offer().
+    const Int4 candidate = ~outside & (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.limit()));
     for (unsigned m = lane_mask(candidate); m != 0u; m &= m - 1u) {
       const auto lane = static_cast<unsigned>(std::countr_zero(m));
-      if (t[lane] <= best.hit.t) best.offer(t[lane], p->triangle[lane]);
+      if (t[lane] <= best.limit()) best.offer(t[lane], p->triangle[lane]);
     }
   }
 }
 
 // The traversal proper. Entering slots in the order of the binary walk (see
 // the file comment of wide_bvh.h) is what makes the answer identical to it.
-template <bool kParallel>
-HitInfo traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Best best) {
+template <bool kParallel, class Collector>
+void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Collector& best) {
   // A slot that waits, with the entry distance of its box.
   struct Entry {
     float t;
@@ -288,7 +309,7 @@ HitInfo traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel
     if (item.count == 0u) {
       const WideNode& node = nodes[item.child];
       Vec4 tnear;
-      const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.hit.t, tnear);
+      const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.limit(), tnear);
       if (hits != 0u) {
         if ((hits & (hits - 1u)) == 0u) {  // one hit, the common case
           item = node.slot[std::countr_zero(hits)];
@@ -328,9 +349,9 @@ HitInfo traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel
     // Pop, skipping slots that a closer hit has since ruled out: re-testing
     // the box with the new limit would give the same entry distance, and
     // min(exit, limit) * margin is below it exactly when limit * margin is.
-    const float limit = best.hit.t * kBoxMargin;
+    const float limit = best.limit() * kBoxMargin;
     for (;;) {
-      if (size == 0u) return best.hit;
+      if (size == 0u) return;
       --size;
       if (stack[size].t <= limit) break;
     }
@@ -352,12 +373,34 @@ WideBvh build_wide_bvh(const Bvh& bvh) {
   return wide;
 }
 
-HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+namespace {
+
+template <class Collector>
+void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax, Collector& collector) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   const WideRay ray = make_wide_ray(q);
-  const Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
-  if (q.parallel_axes != 0u) return traverse<true>(wide, ray, q.parallel_axes, best);
-  return traverse<false>(wide, ray, 0u, best);
+  if (q.parallel_axes != 0u) {
+    traverse<true>(wide, ray, q.parallel_axes, collector);
+  } else {
+    traverse<false>(wide, ray, 0u, collector);
+  }
+}
+
+}  // namespace
+
+HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
+  walk(wide, origin, dir, tmin, tmax, best);
+  return best.hit;
+}
+
+shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
+                                  float tmax) {
+  Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
+  nearest.list.count = 0u;
+  nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
+  walk(wide, origin, dir, tmin, tmax, nearest);
+  return nearest.list;
 }
 
 }  // namespace sp

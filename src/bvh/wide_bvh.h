@@ -97,4 +97,9 @@ WideBvh build_wide_bvh(const Bvh& bvh);
 // sp_closest_hit's answer for `bvh`, from `wide` = build_wide_bvh(bvh).
 HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
+// sp_nearest_hits' answer (the matter query's list), the same way: the walk
+// is the same with the list's limit in place of the best hit.
+shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
+                                  float tmax);
+
 }  // namespace sp

@@ -14,19 +14,20 @@ static_assert(sizeof(BvhNode) == 32 && offsetof(BvhNode, left_or_first) == 12 &&
               offsetof(BvhNode, count) == 28);
 static_assert(sizeof(BvhTriangle) == 64 && offsetof(BvhTriangle, layer) == 12 && offsetof(BvhTriangle, v1) == 16 &&
               offsetof(BvhTriangle, scene_index) == 28 && offsetof(BvhTriangle, v2) == 32 &&
-              offsetof(BvhTriangle, normal) == 48);
-static_assert(sizeof(LayerAcoustics) == 8);
+              offsetof(BvhTriangle, solid) == 44 && offsetof(BvhTriangle, normal) == 48);
+static_assert(sizeof(LayerAcoustics) == 16 && offsetof(LayerAcoustics, sheet_thickness) == 8);
 static_assert(sizeof(SimParams) == 32);
 static_assert(sizeof(StepSource) == 48 && offsetof(StepSource, color) == 16 && offsetof(StepSource, intensity) == 32 &&
               offsetof(StepSource, source_id) == 44);
-static_assert(sizeof(RayState) == 80 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 &&
+static_assert(sizeof(RayState) == 96 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 &&
               offsetof(RayState, entry_layer) == 44 && offsetof(RayState, state) == 48 &&
-              offsetof(RayState, loudness) == 76);
+              offsetof(RayState, loudness) == 76 && offsetof(RayState, entry_triangle) == 80);
 static_assert(sizeof(Indicator) == 80 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 &&
               offsetof(Indicator, kind) == 48 && offsetof(Indicator, iteration) == 76);
 static_assert(sizeof(HitInfo) == 8);
-static_assert(sizeof(QueueArgs) == 16);
-static_assert(sizeof(Control) == 96 && offsetof(Control, draw_vertex_count) == 32 && offsetof(Control, ring_head) == 48);
+static_assert(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) == 8);
+static_assert(sizeof(QueueArgs) == 32 && offsetof(QueueArgs, active_count) == 12);
+static_assert(sizeof(Control) == 128 && offsetof(Control, draw_vertex_count) == 64 && offsetof(Control, ring_head) == 80);
 // StepSource[] follows StepInput in one buffer; std430 places it at the
 // array's alignment (16, from vec3), which sizeof(StepInput) already is.
 static_assert(sizeof(StepInput) == 48 && sizeof(StepInput) % 16 == 0);

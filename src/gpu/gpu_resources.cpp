@@ -82,7 +82,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   step_input = vk::Buffer(context, sizeof(shader::StepInput) + bytes<shader::StepSource>(source_capacity),
                           kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "step input");
   rays = vk::Buffer(context, bytes<shader::RayState>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "rays");
-  hits = vk::Buffer(context, bytes<shader::HitInfo>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "hits");
+  hits = vk::Buffer(context, bytes<shader::CastResult>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "hits");
   queues = vk::Buffer(context, bytes<std::uint32_t>(2ull * max_rays), kStorage, vk::MemoryUsage::DeviceLocal,
                       "ray queues");
   control = vk::Buffer(context, sizeof(shader::Control), kStorage | kTransfer | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
@@ -91,7 +91,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::DeviceLocal, "indicator ring");
   capture = vk::Buffer(context, bytes<shader::Indicator>(capture_capacity), kStorage | kTransfer,
                        vk::MemoryUsage::DeviceLocal, "indicator capture");
-  // per layer: 4 step counters, then 4 (lo, hi) totals
+  // per layer: SP_COUNTERS_PER_LAYER step counters, then as many (lo, hi) totals
   counters = vk::Buffer(context, bytes<std::uint32_t>(layer_count * SP_COUNTERS_PER_LAYER * 3), kStorage | kTransfer,
                         vk::MemoryUsage::DeviceLocal, "layer counters");
   control_readback = vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback,

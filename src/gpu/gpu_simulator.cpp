@@ -27,7 +27,8 @@ std::uint64_t join64(std::uint32_t lo, std::uint32_t hi) { return (std::uint64_t
 
 void sort_canonically(std::vector<Indicator>& indicators) {
   std::sort(indicators.begin(), indicators.end(), [](const Indicator& a, const Indicator& b) {
-    return std::tie(a.step, a.iteration, a.ray_index) < std::tie(b.step, b.iteration, b.ray_index);
+    // kind last: a sheet's hit (0) and exit (1) share their ray and iteration.
+    return std::tie(a.step, a.iteration, a.ray_index, a.kind) < std::tie(b.step, b.iteration, b.ray_index, b.kind);
   });
 }
 
@@ -143,7 +144,8 @@ class GpuSimulator final : public Simulator {
           std::size_t k = totals + 2 * (l * SP_COUNTERS_PER_LAYER + which);
           return join64(counters[k], counters[k + 1]);
         };
-        stats.layers.push_back({total(0), total(1), total(2), total(3)});
+        stats.layers.push_back({total(SP_COUNTER_HITS), total(SP_COUNTER_REFLECTIONS), total(SP_COUNTER_PENETRATIONS),
+                                total(SP_COUNTER_BACKCAST_MISSES), total(SP_COUNTER_BACK_FACE_HITS)});
       }
       return stats;
     }, ErrorCode::Vulkan);

@@ -41,7 +41,8 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
     layers[world.layer_names[l]] = {{"hits", c.hits},
                                     {"reflections", c.reflections},
                                     {"penetrations", c.penetrations},
-                                    {"backcast_misses", c.backcast_misses}};
+                                    {"backcast_misses", c.backcast_misses},
+                                    {"back_face_hits", c.back_face_hits}};
   }
   json["layers"] = layers;
   nlohmann::ordered_json timing;

@@ -14,24 +14,35 @@ void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<In
   BvhTriangle no_triangle{};
 
   while (ray.state != SP_RAY_DEAD) {
-    // The 4-wide CPU traversal; same hits as the GPU's sp_closest_hit.
-    HitInfo hit = closest_hit(*context.bvh, sp_cast_origin(ray), ray.dir, sp_cast_tmin(ray), sp_cast_tmax(ray, p));
+    CastResult found{};
+    if (ray.state == SP_RAY_ACTIVE) {
+      // The 4-wide CPU traversal; same hits as the GPU's sp_closest_hit.
+      const HitInfo hit = closest_hit(*context.bvh, ray.origin, ray.dir, 0.0f, sp_active_reach(ray, p));
+      found = CastResult{hit.t, hit.triangle, 0.0f, 0u};
+    } else {
+      // The 4-wide walk again; the same list as the GPU's sp_nearest_hits.
+      const HitList list = nearest_hits(*context.bvh, ray.entry, ray.dir, sp_matter_tmin(), p.max_wall_thickness);
+      found = sp_find_exit(triangles, context.layers.data(), list, ray.entry_triangle);
+    }
     counters.casts += 1;
-    const BvhTriangle& triangle = hit.triangle != SP_INVALID ? triangles[hit.triangle] : no_triangle;
+    const BvhTriangle& triangle = found.triangle != SP_INVALID ? triangles[found.triangle] : no_triangle;
     Indicator indicator;
+    Indicator sheet_exit;
     uint outcome;
     if (ray.state == SP_RAY_ACTIVE) {
-      outcome = sp_resolve_active(ray, hit, triangle, context.layers[triangle.layer], source, p, indicator);
+      outcome = sp_resolve_active(ray, found, triangle, context.layers[triangle.layer], source, p, indicator, sheet_exit);
       LayerCounters& layer = counters.layers[triangle.layer];
       layer.hits += (outcome & SP_OUTCOME_HIT) != 0;
       layer.reflections += (outcome & SP_OUTCOME_REFLECT) != 0;
       layer.penetrations += (outcome & SP_OUTCOME_PENETRATE) != 0;
+      layer.back_face_hits += (outcome & SP_OUTCOME_BACK_FACE) != 0;
     } else {
-      uint entry_layer = ray.entry_layer;
-      outcome = sp_resolve_backcast(ray, hit, triangle, context.layers[entry_layer], source, p, indicator);
+      const uint entry_layer = ray.entry_layer;
+      outcome = sp_resolve_backcast(ray, found, triangle, source, p, indicator);
       counters.layers[entry_layer].backcast_misses += (outcome & SP_OUTCOME_BACKCAST_MISS) != 0;
     }
     if (outcome & SP_OUTCOME_INDICATOR) indicators.push_back(indicator);
+    if (outcome & SP_OUTCOME_SHEET_EXIT) indicators.push_back(sheet_exit);
   }
 }
 

@@ -19,6 +19,7 @@ inline void accumulate(LayerCounters& into, const LayerCounters& more) {
   into.reflections += more.reflections;
   into.penetrations += more.penetrations;
   into.backcast_misses += more.backcast_misses;
+  into.back_face_hits += more.back_face_hits;
 }
 
 // Per-worker counters, summed after the step (integer sums: order-free).

@@ -176,7 +176,7 @@ BvhChanges SoundScene::update_geometry() {
   }
   BvhChanges changes = refit_bvh(world_.bvh, vertices);
   if (absolute_sah_cost(world_.bvh) > kRebuildCostRatio * world_.build_sah_cost) {
-    world_.bvh = build_bvh(vertices, world_.triangle_layers);
+    world_.bvh = build_bvh(vertices, world_.triangle_layers, world_.triangle_solids);
     world_.build_sah_cost = absolute_sah_cost(world_.bvh);
     changes.nodes = {{0, static_cast<std::uint32_t>(world_.bvh.nodes.size())}};
     changes.triangles = {{0, static_cast<std::uint32_t>(world_.bvh.triangles.size())}};

@@ -95,7 +95,7 @@ shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
 std::vector<shader::LayerAcoustics> make_layer_table(const World& world) {
   std::vector<shader::LayerAcoustics> table;
   for (const LayerProperties& props : world.layer_properties)
-    table.push_back({props.reflect_probability, props.attenuation});
+    table.push_back({props.reflect_probability, props.attenuation, props.sheet_thickness, 0u});
   return table;
 }
 

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "bvh/mesh_topology.h"
 #include "core/finite.h"
 #include "sim/source_checks.h"
 #include "soundpaint/simulation.h"
@@ -104,7 +105,10 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
     for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
     for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
-    world.bvh = build_bvh(scene.vertices, scene.triangle_layers, bvh_settings);
+    // Which triangles form one piece of surface: the matter rules cross a
+    // piece met through a shared edge once (docs/model.md, "Matter").
+    MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, scene.layer_names.size());
+    world.bvh = build_bvh(scene.vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
     if (!scene.instance_names.empty()) {
       world.instance_names = scene.instance_names;
       world.instance_transforms.assign(scene.instance_names.size(), glm::mat4(1.0f));
@@ -112,6 +116,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
       world.triangle_instances = scene.triangle_instances;
       if (world.triangle_instances.empty()) world.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
       world.triangle_layers = scene.triangle_layers;
+      world.triangle_solids = std::move(topology.triangle_solids);
     }
     return world;
   });

@@ -30,7 +30,7 @@ struct Soup {
     layers.push_back(layer);
   }
   std::uint32_t size() const { return static_cast<std::uint32_t>(layers.size()); }
-  sp::Bvh build(const sp::BvhBuildSettings& s = {}) const { return sp::build_bvh(vertices, layers, s); }
+  sp::Bvh build(const sp::BvhBuildSettings& s = {}) const { return sp::build_bvh(vertices, layers, {}, s); }
 };
 
 // An axis-aligned box with each face cut into n x n quads (2 triangles each).

@@ -10,22 +10,63 @@
 
 namespace sp::test {
 
-// Appends the 12 triangles of the box [lo, hi] with layer `layer`.
-inline void add_box(Scene& scene, glm::vec3 lo, glm::vec3 hi, const std::string& layer) {
-  std::uint32_t layer_id = 0;
-  while (layer_id < scene.layer_names.size() && scene.layer_names[layer_id] != layer) ++layer_id;
-  if (layer_id == scene.layer_names.size()) scene.layer_names.push_back(layer);
+// The id of layer `layer` in `scene`, added if new.
+inline std::uint32_t layer_id(Scene& scene, const std::string& layer) {
+  std::uint32_t id = 0;
+  while (id < scene.layer_names.size() && scene.layer_names[id] != layer) ++id;
+  if (id == scene.layer_names.size()) scene.layer_names.push_back(layer);
+  return id;
+}
+
+// Appends triangle (a, b, c): its front faces where a -> b -> c runs
+// counter-clockwise.
+inline void add_triangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, const std::string& layer) {
+  const std::uint32_t id = layer_id(scene, layer);
+  scene.vertices.insert(scene.vertices.end(), {a, b, c});
+  scene.triangle_layers.push_back(id);
+}
+
+// Appends quad a b c d (counter-clockwise seen from its front) as two
+// triangles sharing the diagonal a-c.
+inline void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, const std::string& layer) {
+  add_triangle(scene, a, b, c, layer);
+  add_triangle(scene, a, c, d, layer);
+}
+
+// Faces of a box, for add_box_faces' masks.
+enum BoxFace : unsigned {
+  kMinusZ = 1u,
+  kPlusZ = 2u,
+  kMinusY = 4u,
+  kPlusY = 8u,
+  kMinusX = 16u,
+  kPlusX = 32u,
+  kAllFaces = 63u,
+};
+
+// Appends the faces of box [lo, hi] in `faces` (two triangles each, outward
+// fronts); those also in `flipped` are wound inward. Leaving faces out makes
+// an open mesh, as render meshes are.
+inline void add_box_faces(Scene& scene, glm::vec3 lo, glm::vec3 hi, const std::string& layer, unsigned faces,
+                          unsigned flipped = 0u) {
   const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
                           {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
-  const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-  for (const auto& f : faces) {
-    for (int tri : {0, 1}) {
-      scene.vertices.push_back(c[f[0]]);
-      scene.vertices.push_back(c[f[1 + tri]]);
-      scene.vertices.push_back(c[f[2 + tri]]);
-      scene.triangle_layers.push_back(layer_id);
+  // In BoxFace order: -z, +z, -y, +y, -x, +x.
+  const int corners[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+  for (unsigned f = 0; f < 6; ++f) {
+    if ((faces & (1u << f)) == 0u) continue;
+    const int* q = corners[f];
+    if (flipped & (1u << f)) {
+      add_quad(scene, c[q[0]], c[q[3]], c[q[2]], c[q[1]], layer);
+    } else {
+      add_quad(scene, c[q[0]], c[q[1]], c[q[2]], c[q[3]], layer);
     }
   }
+}
+
+// Appends the 12 triangles of the closed box [lo, hi] with layer `layer`.
+inline void add_box(Scene& scene, glm::vec3 lo, glm::vec3 hi, const std::string& layer) {
+  add_box_faces(scene, lo, hi, layer, kAllFaces);
 }
 
 // A closed room: inner space [lo, hi], six solid slabs `thickness` thick.
