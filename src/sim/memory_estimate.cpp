@@ -8,9 +8,9 @@ namespace {
 
 constexpr std::uint64_t kCpuStepCopies = 4;
 constexpr std::uint64_t kGpuStepCopies = 2;
-// Per GPU ray: its state, its cast result and two queue slots.
-constexpr std::uint64_t kGpuRayBytes =
-    sizeof(shader::RayState) + sizeof(shader::CastResult) + 2 * sizeof(std::uint32_t);
+// Per GPU ray: its state, its cast's result (counted as large as a state)
+// and two queue slots.
+constexpr std::uint64_t kGpuRayBytes = 2 * sizeof(shader::RayState) + 2 * sizeof(std::uint32_t);
 
 // a * b, saturating instead of wrapping: hostile values only make it larger.
 std::uint64_t times(std::uint64_t a, std::uint64_t b) {
