@@ -201,5 +201,83 @@ TEST(Cli, GpuBackendRunsCleanUnderTheValidationLayer) {
   EXPECT_EQ(stats["indicators"].get<std::size_t>() + 1, lines(test::read_text(dir / "i.csv")).size());
 }
 
+
+// ------------------------------------------------------------ check (issue 10)
+
+const std::string kTestData = SP_TEST_DATA_DIR;
+
+std::vector<std::string> finding_codes(const nlohmann::json& report) {
+  std::vector<std::string> codes;
+  for (const auto& f : report["findings"]) {
+    EXPECT_FALSE(f["message"].get<std::string>().empty());
+    EXPECT_GT(f["count"].get<std::uint64_t>(), 0u);
+    codes.push_back(f["code"].get<std::string>());
+  }
+  return codes;
+}
+
+TEST(Cli, CheckFindsNothingOnAClosedBoxRoom) {
+  ScratchDir dir("check-closed");
+  auto r = run_command(kCli + " check " + kScenes + "/closed_room.gltf --json " + (dir / "c.json").string(), dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("no findings"), std::string::npos) << r.out;
+  auto report = nlohmann::json::parse(test::read_text(dir / "c.json"));
+  EXPECT_EQ(report["triangles"], 72);
+  EXPECT_TRUE(report["findings"].empty()) << report.dump();
+}
+
+TEST(Cli, CheckFlagsTheRenderMeshAsOpen) {
+  ScratchDir dir("check-render");
+  auto r = run_command(kCli + " check " + kTestData + "/issue-10-render-mesh.gltf --json " + (dir / "c.json").string(),
+                       dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;  // findings are advice
+  auto codes = finding_codes(nlohmann::json::parse(test::read_text(dir / "c.json")));
+  EXPECT_NE(std::find(codes.begin(), codes.end(), "open_edges"), codes.end());
+  EXPECT_NE(std::find(codes.begin(), codes.end(), "penetration_misses"), codes.end());
+  EXPECT_NE(r.out.find("open_edges: "), std::string::npos) << r.out;
+  // The same place built from closed brushes is not open.
+  auto brushes = run_command(kCli + " check " + kTestData + "/issue-10-touching-brushes.gltf", dir.path());
+  ASSERT_EQ(brushes.status, 0) << brushes.err;
+  EXPECT_EQ(brushes.out.find("open_edges"), std::string::npos) << brushes.out;
+  EXPECT_EQ(brushes.out.find("penetration_misses"), std::string::npos) << brushes.out;
+}
+
+TEST(Cli, CheckRejectsBadInputInOneLine) {
+  ScratchDir dir("check-bad");
+  auto none = run_command(kCli + " check", dir.path());
+  EXPECT_EQ(none.status, 2);
+  auto missing = run_command(kCli + " check " + (dir / "nope.gltf").string() + " --json " + (dir / "c.json").string(),
+                             dir.path());
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.err.find("nope.gltf"), std::string::npos) << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.json"));
+}
+
+TEST(Cli, TouchingBrushesNeverExitAtTheirContact) {
+  // Wall brushes at x in [1, 1.2] and [1.2, 1.5] that always let rays in:
+  // rays through them leave at x = 1.5 (or their top and sides), never at
+  // the contact plane x = 1.2.
+  ScratchDir dir("touching");
+  std::ofstream(dir / "c.json") << R"({"layers": {"concrete": {"reflect_probability": 0, "attenuation": 0.5}},
+                                       "max_wall_thickness": 1.0, "air_attenuation": 0})";
+  auto r = run_command(kCli + " simulate " + kTestData + "/issue-10-touching-brushes.gltf --backend cpu --steps 30 " +
+                           "--config " + (dir / "c.json").string() + " --indicators " + (dir / "i.csv").string(),
+                       dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  int at_far_side = 0;
+  for (const std::string& row : lines(test::read_text(dir / "i.csv"))) {
+    std::vector<std::string> f;
+    std::stringstream fields(row);
+    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
+    if (f.size() < 9 || f[1] != "exit") continue;
+    const double x = std::stod(f[3]), y = std::stod(f[4]), z = std::stod(f[5]);
+    const bool on_wall = y > 0.01 && y < 2.99 && z > -2.99 && z < 2.99;
+    EXPECT_FALSE(on_wall && std::abs(x - 1.2) < 1e-3) << row;
+    at_far_side += on_wall && std::abs(x - 1.5) < 1e-3;
+  }
+  EXPECT_GT(at_far_side, 20);
+}
+
 }  // namespace
 }  // namespace sp
