@@ -1,5 +1,6 @@
 // The options that set how far soundpaint trusts its input (README
-// "Security"), shared by every command that loads a scene or simulates.
+// "Security"), shared by the commands that take them (simulate, render,
+// info).
 #pragma once
 
 #include <cstdint>
