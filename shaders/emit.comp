@@ -11,16 +11,12 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   uint total = step_input.total_rays;
   if (i == 0u) {
-    control.queues[0].group_count_x = (total + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
-    control.queues[0].group_count_y = 1u;
-    control.queues[0].group_count_z = 1u;
     control.queues[0].active_count = total;
     control.queues[0].resolving_count = 0u;
-    control.queues[1].group_count_x = 0u;
-    control.queues[1].group_count_y = 1u;
-    control.queues[1].group_count_z = 1u;
+    set_queue_groups(0u);
     control.queues[1].active_count = 0u;
     control.queues[1].resolving_count = 0u;
+    set_queue_groups(1u);
     control.step_indicators = 0u;
     control.step_casts = 0u;
   }

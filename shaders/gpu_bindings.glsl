@@ -30,6 +30,20 @@ uint queue_entry(uint queue, uint i) {
   return queue_entries[queue * push.max_rays + slot];
 }
 
+// Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
+uint group_count(uint invocations) { return (invocations + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE; }
+void set_queue_groups(uint queue) {
+  control.queues[queue].group_count_x = group_count(queue_length(queue));
+  control.queues[queue].group_count_y = 1u;
+  control.queues[queue].group_count_z = 1u;
+  control.queues[queue].active_groups_x = group_count(control.queues[queue].active_count);
+  control.queues[queue].active_groups_y = 1u;
+  control.queues[queue].active_groups_z = 1u;
+  control.queues[queue].resolving_groups_x = group_count(control.queues[queue].resolving_count);
+  control.queues[queue].resolving_groups_y = 1u;
+  control.queues[queue].resolving_groups_z = 1u;
+}
+
 // Appends `value` to queue `queue` when `append`: at its front when
 // `resolving` is false, at its back when true; one atomic per subgroup and
 // end. Must be reached by the whole subgroup (uniform control flow).

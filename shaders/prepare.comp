@@ -17,10 +17,10 @@ void add64(inout uint lo, inout uint hi, uint value) {
 void main() {
   uint queue_in = push.queue_in;
   uint queue_out = 1u - queue_in;
-  control.queues[queue_out].group_count_x = (queue_length(queue_out) + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
-  control.queues[queue_in].group_count_x = 0u;
+  set_queue_groups(queue_out);
   control.queues[queue_in].active_count = 0u;
   control.queues[queue_in].resolving_count = 0u;
+  set_queue_groups(queue_in);
   if (push.finish == 0u) return;
 
   uint made = control.step_indicators;

@@ -1,8 +1,7 @@
 #version 460
-// Stage (b)/(d): one BVH query per queued ray -- the forward cast of an
-// Active ray (closest hit), or the matter query of a ResolvingPenetration ray
-// (the nearest faces behind p_in, then where it leaves matter: sp_matter.h).
-// Both walk the same BVH, so one dispatch serves both.
+// Stage (b)/(d), Active rays: the forward cast, one closest-hit query per
+// Active ray of the queue (its front, QueueArgs). trace_matter.comp serves
+// the resolving rays of the same iteration.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_traverse.h"
@@ -12,20 +11,12 @@ layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  bool valid = i < queue_length(push.queue_in);
+  bool valid = i < control.queues[push.queue_in].active_count;
   if (valid) {
     uint ray_index = queue_entry(push.queue_in, i);
     RayState r = rays[ray_index];
-    CastResult found;
-    if (r.state == SP_RAY_RESOLVING) {
-      HitList list;
-      sp_nearest_hits(r.entry, r.dir, sp_matter_tmin(), step_input.params.max_wall_thickness, list);
-      found = sp_find_exit(list, r.entry_triangle);
-    } else {
-      HitInfo hit = sp_closest_hit(r.origin, r.dir, 0.0f, sp_active_reach(r, step_input.params));
-      found = CastResult(hit.t, hit.triangle, 0.0f, 0u);
-    }
-    hits[ray_index] = found;
+    HitInfo hit = sp_closest_hit(r.origin, r.dir, 0.0f, sp_active_reach(r, step_input.params));
+    hits[ray_index] = CastResult(hit.t, hit.triangle, 0.0f, 0u);
   }
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_casts, casts);

@@ -186,7 +186,7 @@ struct Agreement {
 bool same_list(const sp::shader::HitList& a, const sp::shader::HitList& b) {
   if (a.count != b.count) return false;
   for (std::uint32_t k = 0; k < a.count; ++k)
-    if (a.triangle[k] != b.triangle[k] || a.scene[k] != b.scene[k] ||
+    if (a.triangle[k] != b.triangle[k] || a.key[k] != b.key[k] ||
         std::bit_cast<std::uint32_t>(a.t[k]) != std::bit_cast<std::uint32_t>(b.t[k]))
       return false;
   return true;

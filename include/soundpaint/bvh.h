@@ -64,7 +64,7 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
 // The nearest SP_MATTER_MAX_HITS hits with distance in (tmin, tmax], sorted
-// by (t, scene index): the matter query of a penetrating ray. The answer of
+// by (t, leaf order): the matter query of a penetrating ray. The answer of
 // the shared sp_nearest_hits (shaders/shared/sp_traverse.h), bit for bit.
 shader::HitList nearest_hits(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 

@@ -31,22 +31,27 @@
 
 SP_BEGIN_NAMESPACE
 
-// A work queue's VkDispatchIndirectCommand followed by its lengths. A queue
-// holds Active rays from its front and ResolvingPenetration rays from its
-// back, so that a dispatch over it gives each subgroup rays of one kind (the
-// matter query's longer path then costs only the subgroups that need it):
-// entry i < active_count is slot i, entry active_count + j is slot
-// max_rays - 1 - j. The resolve kernel appends by bumping one count; the
-// prepare kernel turns their sum into group_count_x for the next dispatch.
+// A work queue's lengths and the three VkDispatchIndirectCommands over it.
+// A queue holds Active rays from its front and ResolvingPenetration rays
+// from its back: entry i < active_count is slot i, entry active_count + j is
+// slot max_rays - 1 - j. The trace kernel runs over the Active rays and the
+// matter kernel over the resolving ones, so neither carries the other's
+// registers and each subgroup holds rays of one kind; resolve runs over
+// all. The resolve kernel appends by bumping one count; the prepare kernel
+// turns the counts into the next iteration's group counts.
 struct QueueArgs {
-  uint group_count_x;
+  uint group_count_x;  // resolve: every entry
   uint group_count_y;
   uint group_count_z;
   uint active_count;
+  uint active_groups_x;  // trace: the Active entries
+  uint active_groups_y;
+  uint active_groups_z;
   uint resolving_count;
+  uint resolving_groups_x;  // trace_matter: the resolving entries
+  uint resolving_groups_y;
+  uint resolving_groups_z;
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 
 // GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the

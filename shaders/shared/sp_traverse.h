@@ -187,12 +187,14 @@ SP_INLINE uint sp_crossing(vec3 normal, vec3 dir) {
   return s < 0.0f ? SP_CROSSING_ENTER : (s > 0.0f ? SP_CROSSING_LEAVE : SP_CROSSING_NONE);
 }
 
-// Inserts (t, triangle, scene, key) into the sorted list when it is among
-// the SP_MATTER_MAX_HITS best by (t, scene index); the worst falls off a
-// full list. A face crossed like a listed one of the same solid within
+// Inserts (t, triangle, key) into the sorted list when it is among the
+// SP_MATTER_MAX_HITS nearest by (t, triangle); the farthest falls off a full
+// list. (Ties go by leaf order, not scene order as for the closest hit: faces
+// at one distance are crossed together anyway, and the list holds a word
+// less per entry; both backends share the tree, so they agree.) A face crossed like a listed one of the same solid within
 // SP_CONTACT_TOLERANCE of it is that face's twin across a shared edge (or a
 // fold thinner than the tolerance): it is left out.
-SP_INLINE void sp_hit_list_offer(SP_INOUT(HitList) list, float t, uint triangle, uint scene, uint key) {
+SP_INLINE void sp_hit_list_offer(SP_INOUT(HitList) list, float t, uint triangle, uint key) {
   if ((key & 3u) != SP_CROSSING_NONE) {
     for (uint e = 0u; e < list.count; ++e) {
       SP_PRECISE float gap = abs(list.t[e] - t);
@@ -201,32 +203,30 @@ SP_INLINE void sp_hit_list_offer(SP_INOUT(HitList) list, float t, uint triangle,
   }
   uint at = list.count;
   if (at == SP_MATTER_MAX_HITS) {
-    if (!sp_better_hit(t, scene, list.t[at - 1u], list.scene[at - 1u])) return;
+    if (!sp_better_hit(t, triangle, list.t[at - 1u], list.triangle[at - 1u])) return;
     at -= 1u;
   } else {
     list.count += 1u;
   }
-  while (at > 0u && sp_better_hit(t, scene, list.t[at - 1u], list.scene[at - 1u])) {
+  while (at > 0u && sp_better_hit(t, triangle, list.t[at - 1u], list.triangle[at - 1u])) {
     list.t[at] = list.t[at - 1u];
     list.triangle[at] = list.triangle[at - 1u];
-    list.scene[at] = list.scene[at - 1u];
     list.key[at] = list.key[at - 1u];
     at -= 1u;
   }
   list.t[at] = t;
   list.triangle[at] = triangle;
-  list.scene[at] = scene;
   list.key[at] = key;
 }
 
 // Far limit of the boxes still worth visiting: the worst listed hit once the
-// list is full (a hit exactly there may still win on scene index), else tmax.
+// list is full (a hit exactly there may still win on leaf order), else tmax.
 SP_INLINE float sp_hit_list_limit(uint count, float worst, float tmax) {
   return count == SP_MATTER_MAX_HITS ? worst : tmax;
 }
 
 // The SP_MATTER_MAX_HITS nearest hits with distance in (tmin, tmax], sorted
-// by (t, scene index), twins across shared edges once (sp_hit_list_offer);
+// by (t, leaf order), twins across shared edges once (sp_hit_list_offer);
 // tmin may be negative. The same walk as sp_closest_hit with the list's
 // limit in place of the best hit; written out twice because GLSL has no
 // templates, and the closest hit, every ray's hot path, must not carry the
@@ -247,7 +247,7 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
         BvhTriangle tri = bvh_triangles[i];
         float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
         if (t < SP_FAR && t > q.tmin && t <= q.tmax)
-          sp_hit_list_offer(list, t, i, tri.scene_index, tri.solid * 4u + sp_crossing(tri.normal, q.dir));
+          sp_hit_list_offer(list, t, i, tri.solid * 4u + sp_crossing(tri.normal, q.dir));
       }
     } else {
       uint left = node.left_or_first;

@@ -189,7 +189,7 @@ struct CastResult {
   uint pad0;
 };
 
-// The nearest faces along a segment, sorted by (t, scene index): what a
+// The nearest faces along a segment, sorted by (t, leaf order): what a
 // matter query sees. count == SP_MATTER_MAX_HITS means there may be more
 // beyond t[SP_MATTER_MAX_HITS - 1]. key = solid * 4 + crossing code
 // (SP_CROSSING_*), so that the two triangles of one surface met through
@@ -197,7 +197,6 @@ struct CastResult {
 struct HitList {
   float t[SP_MATTER_MAX_HITS];
   uint triangle[SP_MATTER_MAX_HITS];
-  uint scene[SP_MATTER_MAX_HITS];
   uint key[SP_MATTER_MAX_HITS];
   uint count;
 };

@@ -249,7 +249,7 @@ struct Nearest {
   float limit() const { return shader::sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax); }
   void offer(float t, std::uint32_t triangle) {
     const BvhTriangle& tri = triangles[triangle];
-    shader::sp_hit_list_offer(list, t, triangle, tri.scene_index, tri.solid * 4u + shader::sp_crossing(tri.normal, dir));
+    shader::sp_hit_list_offer(list, t, triangle, tri.solid * 4u + shader::sp_crossing(tri.normal, dir));
   }
 };
 

@@ -26,8 +26,10 @@ static_assert(sizeof(Indicator) == 80 && offsetof(Indicator, normal) == 16 && of
               offsetof(Indicator, kind) == 48 && offsetof(Indicator, iteration) == 76);
 static_assert(sizeof(HitInfo) == 8);
 static_assert(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) == 8);
-static_assert(sizeof(QueueArgs) == 32 && offsetof(QueueArgs, active_count) == 12);
-static_assert(sizeof(Control) == 128 && offsetof(Control, draw_vertex_count) == 64 && offsetof(Control, ring_head) == 80);
+static_assert(sizeof(QueueArgs) == 48 && offsetof(QueueArgs, active_groups_x) == 16 &&
+              offsetof(QueueArgs, resolving_groups_x) == 32);
+static_assert(sizeof(Control) == 160 && offsetof(Control, draw_vertex_count) == 96 &&
+              offsetof(Control, ring_head) == 112);
 // StepSource[] follows StepInput in one buffer; std430 places it at the
 // array's alignment (16, from vec3), which sizeof(StepInput) already is.
 static_assert(sizeof(StepInput) == 48 && sizeof(StepInput) % 16 == 0);

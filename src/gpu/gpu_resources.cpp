@@ -10,6 +10,7 @@
 #include "resolve.comp.spv.h"
 #include "sim/step_plan.h"
 #include "trace.comp.spv.h"
+#include "trace_matter.comp.spv.h"
 
 namespace sp::gpu {
 namespace {
@@ -116,6 +117,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
   kernels.emit = vk::ComputePipeline(context, sp_spirv_emit_comp, bindings.layout(), push, "emit");
   kernels.trace = vk::ComputePipeline(context, sp_spirv_trace_comp, bindings.layout(), push, "trace");
+  kernels.trace_matter =
+      vk::ComputePipeline(context, sp_spirv_trace_matter_comp, bindings.layout(), push, "trace_matter");
   kernels.resolve = vk::ComputePipeline(context, sp_spirv_resolve_comp, bindings.layout(), push, "resolve");
   kernels.prepare = vk::ComputePipeline(context, sp_spirv_prepare_comp, bindings.layout(), push, "prepare");
 }

@@ -19,6 +19,7 @@ namespace sp::gpu {
 struct Kernels {
   vk::ComputePipeline emit;
   vk::ComputePipeline trace;
+  vk::ComputePipeline trace_matter;
   vk::ComputePipeline resolve;
   vk::ComputePipeline prepare;
 };

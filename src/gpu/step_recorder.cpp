@@ -1,6 +1,7 @@
 #include "gpu/step_recorder.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "vk/barriers.h"
 
@@ -30,8 +31,11 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
     const std::uint32_t queue_in = it % 2;
     const VkDeviceSize args = queue_in * sizeof(shader::QueueArgs);
     bind(cmd, r, r.kernels.trace, queue_in, 0);
-    vkCmdDispatchIndirect(cmd, r.control.get(), args);
-    // Hits written by trace are read by resolve.
+    vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, active_groups_x));
+    // The two write the hits of disjoint rays: no barrier between them.
+    bind(cmd, r, r.kernels.trace_matter, queue_in, 0);
+    vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, resolving_groups_x));
+    // Hits written by trace and trace_matter are read by resolve.
     vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.resolve, queue_in, 0);
     vkCmdDispatchIndirect(cmd, r.control.get(), args);
