@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "cli/options.h"
 #include "io/atomic_file.h"
 #include "soundpaint/check.h"
@@ -12,7 +13,7 @@ namespace sp::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: soundpaint check SCENE [--config FILE] [--json OUT.json]\n"
+    "usage: soundpaint check SCENE [--config FILE] [--json OUT.json] [--max-triangles N] [--allow-external-uris]\n"
     "\n"
     "Tells whether SCENE suits the ray model before you wonder why sound never\n"
     "goes through a wall: open edges, inconsistent winding, degenerate triangles,\n"
@@ -41,18 +42,20 @@ std::string report_json(const CheckReport& report) {
 }  // namespace
 
 int run_check(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, {"--config", "--json"}, {"--help"});
+  ParsedArgs parsed = parse_args(args, with_options({"--config", "--json"}, kSceneLimitValueOptions),
+                                 with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
+    std::fputs(scene_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
     throw Exception(ErrorCode::InvalidArgument, "check needs exactly one SCENE argument (see --help)");
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();
-  const Scene scene = load_scene(parsed.positionals[0]).value();
   std::optional<AtomicFile> json_file;
-  if (auto path = parsed.value("--json")) json_file.emplace(*path);
+  if (auto path = parsed.value("--json")) json_file.emplace(*path);  // a refused output fails before the scene is read
+  const Scene scene = load_scene(parsed.positionals[0], scene_load_options(parsed)).value();
 
   const CheckReport report = check_scene(scene, config).value();
   std::printf("scene: %s\ntriangles: %llu\n", scene.path.string().c_str(),

@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
+#include "cli/world_loading.h"
 #include "soundpaint/simulation.h"
 
 namespace sp::cli {
@@ -37,6 +38,7 @@ int run_info(const std::vector<std::string>& args) {
   const char* listener_from = config.listener_position ? "config" : scene.camera ? "camera" : "none; origin assumed";
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
   World world = make_world(scene, config).value();
+  warn_if_penetration_fails(scene, config);
 
   std::printf("scene: %s\n", scene.path.string().c_str());
   std::printf("triangles: %zu\n", scene.triangle_count());

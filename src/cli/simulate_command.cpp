@@ -66,9 +66,11 @@ int run_simulate(const std::vector<std::string>& args) {
       (indicators_path && names_stdout(*indicators_path)) || (stats_path && names_stdout(*stats_path));
   std::FILE* const report = stdout_taken ? stderr : stdout;
 
-  World world = load_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
-  std::unique_ptr<Simulator> simulator =
-      create_simulator(std::move(world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
+  LoadedWorld loaded =
+      load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
+  warn_if_penetration_fails(loaded.scene, loaded.world.config);
+  std::unique_ptr<Simulator> simulator = create_simulator(std::move(loaded.world), backend,
+                                                          static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
 
   // Open outputs before the run so an unwritable path fails fast; both only
   // appear under their names once complete.

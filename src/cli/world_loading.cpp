@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "gpu/gpu_simulator.h"
+#include "soundpaint/check.h"
 #include "vk/context.h"
 
 namespace sp::cli {
@@ -20,6 +21,15 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
 World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
                  std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options) {
   return load_scene_and_world(scene_path, config_path, seed_override, scene_options).world;
+}
+
+void warn_if_penetration_fails(const Scene& scene, const Config& config) {
+  CheckSettings settings;
+  settings.probe_reach = 0.0f;  // what a simulation with this config sees
+  const Result<PenetrationProbe> probe = probe_penetration(scene, config, settings);
+  if (!probe) return;  // the scene loaded; the probe's own trouble is no reason to stop
+  const std::string warning = penetration_warning(probe.value());
+  if (!warning.empty()) std::fprintf(stderr, "soundpaint: warning: %s\n", warning.c_str());
 }
 
 BackendChoice parse_backend(const std::string& name) {

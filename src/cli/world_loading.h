@@ -32,6 +32,11 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
 World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
                  std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options = {});
 
+// Runs the penetration probe (include/soundpaint/check.h) at the config's
+// W_max and prints its one-line warning on stderr when most penetrations
+// find no way out of matter: such a level looks like any other otherwise.
+void warn_if_penetration_fails(const Scene& scene, const Config& config);
+
 // "cpu", "gpu" or "auto"; throws naming --backend otherwise.
 BackendChoice parse_backend(const std::string& name);
 
