@@ -455,6 +455,23 @@ TEST_F(SceneFile, RejectsMissingFilesAndEmptyFiles) {
   EXPECT_NE(empty.error().message.find("empty.glb: empty file"), std::string::npos);
 }
 
+// A level in another format gets "not a glTF 2.0 file", not a JSON parse
+// position: a Quake 3 map (its "IBSP" header), an OBJ, a JSON array; a
+// .gltf that is a JSON object still gets the parser's own message.
+TEST_F(SceneFile, OtherFormatsAreNotGltf) {
+  const std::string bsp = std::string("IBSP\x2e\0\0\0", 8) + std::string(64, '\0');
+  for (const auto& [name, bytes] : {std::pair<std::string, std::string>{"oa_dm1.bsp", bsp},
+                                    {"level.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+                                    {"array.gltf", "\xEF\xBB\xBF [1, 2]"}}) {
+    const sp::Result<sp::Scene> scene = sp::load_scene(write(name, bytes));
+    ASSERT_FALSE(scene.ok()) << name;
+    EXPECT_NE(scene.error().message.find(name + ": not a glTF 2.0 file"), std::string::npos) << scene.error().message;
+  }
+  const sp::Result<sp::Scene> broken = sp::load_scene(write("broken.gltf", " {\"asset\": "));
+  ASSERT_FALSE(broken.ok());
+  EXPECT_EQ(broken.error().message.find("not a glTF 2.0 file"), std::string::npos) << broken.error().message;
+}
+
 // --- bundled scenes ----------------------------------------------------------------
 
 bool has_layer(const sp::Scene& scene, const std::string& name) {

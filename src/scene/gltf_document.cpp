@@ -52,6 +52,13 @@ bool has_glb_magic(const std::vector<unsigned char>& bytes) {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
 
+// The first byte that is not whitespace (or a UTF-8 byte order mark) is '{'.
+bool starts_like_json_object(const std::vector<unsigned char>& bytes) {
+  std::size_t at = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF ? 3 : 0;
+  while (at < bytes.size() && (bytes[at] == ' ' || bytes[at] == '\t' || bytes[at] == '\n' || bytes[at] == '\r')) ++at;
+  return at < bytes.size() && bytes[at] == '{';
+}
+
 std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -66,6 +73,10 @@ tinygltf::Model read_gltf(const std::filesystem::path& path, const SceneLoadOpti
   if (bytes.empty()) fail("empty file");
   const bool binary = has_glb_magic(bytes);
   if (!binary && lower_extension(path) == ".glb") fail("not a binary glTF file (no \"glTF\" magic)");
+  // A level in another format (a .bsp, an .fbx, an .obj) is neither binary
+  // glTF nor a JSON object: say so, not where JSON parsing stopped.
+  if (!binary && !starts_like_json_object(bytes))
+    fail("not a glTF 2.0 file (a .gltf is a JSON object, a .glb starts with \"glTF\"); convert the level to glTF 2.0");
   const char* const kind = binary ? "cannot load binary glTF: " : "cannot load glTF: ";
 
   // The JSON is scanned before tinygltf sees it: too deep a file would
