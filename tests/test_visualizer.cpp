@@ -242,6 +242,19 @@ TEST_F(Host, MisuseIsAnErrorNotACrash) {
   VisualizerSettings zero_steps;
   zero_steps.max_steps_per_frame = 0;
   EXPECT_FALSE(Visualizer::create(host, target_formats(), world, zero_steps).ok());
+  // A player's config whose worst step could not fit the host's budget.
+  for (BackendChoice backend : {BackendChoice::Gpu, BackendChoice::Cpu}) {
+    World greedy = world;
+    greedy.config.ray_budget = 1u << 20;
+    greedy.config.max_bounces = 64;
+    VisualizerSettings budget;
+    budget.backend = backend;
+    budget.cpu.memory_budget_bytes = std::uint64_t{256} << 20;
+    Result<std::unique_ptr<Visualizer>> too_big = Visualizer::create(host, target_formats(), greedy, budget);
+    ASSERT_FALSE(too_big.ok());
+    EXPECT_EQ(too_big.error().code, ErrorCode::LimitExceeded);
+    EXPECT_NE(too_big.error().message.find("ray_budget"), std::string::npos) << too_big.error().message;
+  }
 
   // A device created without the features soundpaint needs.
   VkPhysicalDeviceVulkan13Features without{};

@@ -194,7 +194,11 @@ class Simulator {
   const World& world() const { return scene().world(); }
 
   // Runs the next step (registry, distribution, propagation). Step n runs at
-  // time n * dt. Returns an error only for device failures.
+  // time n * dt. Errors: Vulkan (a device failure), LimitExceeded (the CPU
+  // backend ran out of memory). A CPU step that fails stops the simulator:
+  // this and every later step() and last_step_indicators() return the same
+  // error, while live_indicators() and stats() still describe the steps
+  // before it; create a new simulator to go on.
   virtual Result<bool> step() = 0;
 
   // Steps run so far (== the index of the next step).

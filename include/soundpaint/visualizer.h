@@ -68,7 +68,8 @@ class Visualizer {
  public:
   // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
   // (device below 1.3, missing feature, named), LimitExceeded (a buffer
-  // beyond a device limit). Takes the BVH and buffer setup time; uploads
+  // beyond a device limit, or the config's rays and indicators could need
+  // more than settings.cpu.memory_budget_bytes, whichever backend runs). Takes the BVH and buffer setup time; uploads
   // happen in the first record_simulation.
   static Result<std::unique_ptr<Visualizer>> create(const HostVulkan& host, const DrawTarget& target, World world,
                                                     const VisualizerSettings& settings = {});

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "embed/visualizers.h"
+#include "sim/memory_estimate.h"
 
 namespace sp {
 namespace {
@@ -90,6 +91,9 @@ Result<std::unique_ptr<Visualizer>> Visualizer::create(const HostVulkan& host, c
   const bool use_gpu =
       settings.backend == BackendChoice::Gpu || (settings.backend == BackendChoice::Auto && !cpu_device);
   return capture_errors([&]() -> std::unique_ptr<Visualizer> {
+    // A player's config must not take the host down: refused at once when
+    // its rays and indicators could need more than the host allows.
+    check_memory_budget(world.config, use_gpu ? Backend::Gpu : Backend::Cpu, settings.cpu.memory_budget_bytes);
     if (use_gpu)
       return embed::make_gpu_visualizer(std::move(*context), target, std::move(world), settings,
                                         simulation_on_graphics_queue);
