@@ -1,0 +1,54 @@
+// Categories of sound, numbered, with their shape and palette colour: a
+// source's own colour wins, else its category's colour in the display
+// palette (docs/accessibility-colour.md).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "soundpaint/display.h"
+
+namespace sp {
+
+// How many categories builtin_categories() lists: they own palette entries
+// 0 .. kBuiltinCategoryCount - 1, in that order.
+inline constexpr std::uint32_t kBuiltinCategoryCount = 8;
+
+// Numbers category names: the built-ins first (index = position in
+// builtin_categories()), then other names in order of first appearance.
+// Names match exactly (case and spaces count). Not thread-safe: index_of
+// adds names; a const table may be read from any thread.
+class CategoryTable {
+ public:
+  CategoryTable();
+
+  // The name's index, adding the name if it is new.
+  std::uint32_t index_of(std::string_view name);
+
+  // Precondition: index < size().
+  const std::string& name(std::uint32_t index) const { return names_.at(index); }
+  std::uint32_t size() const { return static_cast<std::uint32_t>(names_.size()); }
+
+  // The shape `overrides` (the config's display.shapes) gives the name, else
+  // the built-in's shape, else Shape::Disc. Precondition: index < size().
+  Shape shape_of(std::uint32_t index, const std::map<std::string, Shape>& overrides) const;
+
+ private:
+  std::vector<std::string> names_;
+};
+
+// The palette entry of the category with this index, in a palette of
+// palette_size entries (> kBuiltinCategoryCount): a built-in's own entry;
+// other categories take the entries after the built-ins' in order of first
+// appearance, then cycle over the whole palette.
+std::uint32_t palette_entry_of(std::uint32_t category_index, std::size_t palette_size);
+
+// The linear RGB colour of the category with this index in `palette`.
+glm::vec3 category_color(std::uint32_t category_index, Palette palette);
+
+}  // namespace sp
