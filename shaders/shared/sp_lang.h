@@ -24,14 +24,21 @@
 
 SP_BEGIN_NAMESPACE
 using glm::uvec4;
+using glm::vec2;
 using glm::vec3;
 using glm::vec4;
 using uint = std::uint32_t;
 using glm::abs;
+using glm::atan;
+using glm::clamp;
+using glm::cos;
 using glm::cross;
 using glm::dot;
+using glm::length;
 using glm::max;
 using glm::min;
+using glm::mod;
+using glm::sin;
 using glm::sqrt;
 SP_END_NAMESPACE
 

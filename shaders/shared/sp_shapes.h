@@ -1,0 +1,191 @@
+// Shapes of the indicator spots, one per kind of sound, drawn procedurally in
+// the fragment shader as signed distance functions: no texture atlas, sharp
+// at any size, and the distance gives the anti-aliased edge and an outline
+// halo for free. The ids are the values of sp::Shape
+// (include/soundpaint/display.h).
+//
+// Formulas: Inigo Quilez, "2D distance functions" (iquilezles.org/articles/
+// distfunctions2d): circle, ring ("annular" shape), box, and the technique
+// behind his rhombus, cross, hexagon and star: fold p by the shape's mirror
+// symmetries into one wedge, where the boundary is a single segment or two,
+// and measure the distance to those alone. The code is ours; every function
+// here is exact (|gradient| = 1, zero on the boundary) inside and outside.
+//
+// Frame: p is in the spot's own frame, where the unit disc is the spot's
+// extent; +x is the direction the sound was travelling, +y its left. The
+// triangle points along +x. Distances are in the units of p, negative inside.
+// Every shape stays inside the disc of radius 0.98, so an anti-aliased edge
+// fits the quad; an outline halo needs the quad grown or p scaled up.
+//
+// Design rules (tests/test_shapes.cpp checks each):
+//  - the same visual weight: every shape covers SP_SHAPE_AREA_SHARE of the
+//    unit disc within 10%, so that loudness, shown by the spot's size, is not
+//    read into its shape;
+//  - strokes (ring, cross, plus) at least SP_SHAPE_STROKE wide;
+//  - the spot's frame turns with the sound's direction on screen, so shapes
+//    must differ under any rotation: the diamond is a long rhombus, not a
+//    square on its corner, and the cross's arms are slender and cross at 60
+//    degrees where the plus's are stout and cross at 90.
+#ifndef SP_SHAPES_H
+#define SP_SHAPES_H
+
+#include "sp_lang.h"
+
+#define SP_SHAPE_DISC 0u
+#define SP_SHAPE_RING 1u
+#define SP_SHAPE_DIAMOND 2u
+#define SP_SHAPE_CROSS 3u
+#define SP_SHAPE_PLUS 4u
+#define SP_SHAPE_TRIANGLE 5u
+#define SP_SHAPE_SQUARE 6u
+#define SP_SHAPE_STAR 7u
+#define SP_SHAPE_HEXAGON 8u
+#define SP_SHAPE_CLOVER 9u
+#define SP_SHAPE_COUNT 10u
+
+// Share of the unit disc each shape covers (within 10%): the largest triangle
+// inside the disc (equilateral, corners on the circle) covers
+// 3*sqrt(3)/(4*pi) = 41%, and every other shape is sized to match it.
+#define SP_SHAPE_AREA_SHARE 0.40f
+// Width of the strokes of the ring and the cross (the plus's are wider), as a
+// fraction of the spot's radius: 2.7 px at SP_SHAPE_MIN_PIXELS, so a stroke
+// keeps a fully covered pixel at any sub-pixel offset.
+#define SP_SHAPE_STROKE 0.34f
+// Smallest spot diameter on screen, in pixels, at which every two shapes,
+// under any rotation, differ by a whole pixel somewhere: the closest pair,
+// the disc and the hexagon's corners, gets there at 15.5 px
+// (tests/test_shapes.cpp measures it; the vertex shader enforces it).
+#define SP_SHAPE_MIN_PIXELS 16.0f
+
+#define SP_SHAPE_PI 3.14159265f
+
+SP_BEGIN_NAMESPACE
+
+// Folds p into the wedge 0 <= angle <= pi/n around +x by the n mirror lines
+// of a shape with n-fold rotational symmetry and a mirror on the x axis. The
+// distance to such a shape is unchanged, and inside the wedge its boundary is
+// one piece.
+SP_INLINE vec2 sp_fold_to_wedge(vec2 p, float n) {
+  float radius = length(p);
+  // atan(0, 0) is undefined in GLSL; at the origin any angle will do.
+  float angle = radius > 0.0f ? atan(p.y, p.x) : 0.0f;
+  float half_wedge = SP_SHAPE_PI / n;
+  float folded = abs(mod(angle + half_wedge, 2.0f * half_wedge) - half_wedge);
+  return radius * vec2(cos(folded), sin(folded));
+}
+
+// Signed distance from q to the segment a-b, negative on its left (looking
+// from a to b). Valid as a shape's distance only where the segment is the
+// whole of the boundary near q, as in a folded wedge.
+SP_INLINE float sp_edge_distance(vec2 q, vec2 a, vec2 b) {
+  vec2 ab = b - a;
+  vec2 aq = q - a;
+  float t = clamp(dot(aq, ab) / dot(ab, ab), 0.0f, 1.0f);
+  float distance = length(aq - ab * t);
+  float left = ab.x * aq.y - ab.y * aq.x;
+  return left > 0.0f ? -distance : distance;
+}
+
+// A star with n points on the circle of radius `outer` (one on +x) and its n
+// inner corners on the circle of radius `inner`; with inner = outer *
+// cos(pi/n) the corners fall on straight edges and it is a regular polygon.
+SP_INLINE float sp_star_distance(vec2 p, float n, float outer, float inner) {
+  vec2 q = sp_fold_to_wedge(p, n);
+  float half_wedge = SP_SHAPE_PI / n;
+  return sp_edge_distance(q, vec2(outer, 0.0f), inner * vec2(cos(half_wedge), sin(half_wedge)));
+}
+
+SP_INLINE float sp_regular_polygon_distance(vec2 p, float n, float circumradius) {
+  return sp_star_distance(p, n, circumradius, circumradius * cos(SP_SHAPE_PI / n));
+}
+
+// Axis-aligned box (Quilez's sdBox).
+SP_INLINE float sp_box_distance(vec2 p, vec2 half_size) {
+  vec2 beyond = abs(p) - half_size;
+  return length(max(beyond, vec2(0.0f))) + min(max(beyond.x, beyond.y), 0.0f);
+}
+
+// Two bars of half-length `half_length` and half-width `half_width` through
+// the origin, at +-angle from the x axis, arm = (cos, sin) of it. Folded
+// into the first quadrant, only the upper bar's boundary remains, from where
+// it leaves the lower bar (on the x axis) to where it meets its mirror image
+// (on the y axis).
+SP_INLINE float sp_cross_distance(vec2 p, vec2 arm, float half_length, float half_width) {
+  vec2 q = abs(p);
+  vec2 bar = vec2(dot(q, arm), arm.x * q.y - arm.y * q.x);  // along, across the upper bar
+  vec2 beyond = vec2(bar.x - half_length, abs(bar.y) - half_width);
+  if (beyond.x > 0.0f || beyond.y > 0.0f) return length(max(beyond, vec2(0.0f)));
+  // Inside: the nearest of the end cap and the two sides, each side starting
+  // where the bar leaves the other arm.
+  float lower_start = half_width * arm.x / arm.y;
+  float upper_start = half_width * arm.y / arm.x;
+  float to_lower = bar.x >= lower_start ? half_width + bar.y : length(bar - vec2(lower_start, -half_width));
+  float to_upper = bar.x >= upper_start ? half_width - bar.y : length(bar - vec2(upper_start, half_width));
+  return -min(-beyond.x, min(to_lower, to_upper));
+}
+
+SP_INLINE float sp_shape_distance(uint shape, vec2 p) {
+  const float area = SP_SHAPE_AREA_SHARE * SP_SHAPE_PI;  // in units of p squared
+  const float sqrt3 = 1.7320508f;
+  switch (shape) {
+    case SP_SHAPE_RING: {
+      // Area 2*pi*mid*stroke.
+      float mid_radius = SP_SHAPE_AREA_SHARE / (2.0f * SP_SHAPE_STROKE);
+      return abs(length(p) - mid_radius) - 0.5f * SP_SHAPE_STROKE;
+    }
+    case SP_SHAPE_DIAMOND: {
+      // Area 2*a*b; 1.5:1 along the travel direction, so that no rotation
+      // makes it the square.
+      float half_long = 0.97f;
+      float half_short = area / (2.0f * half_long);
+      return sp_edge_distance(abs(p), vec2(half_long, 0.0f), vec2(0.0f, half_short));
+    }
+    case SP_SHAPE_CROSS: {
+      // Slender arms at +-60 degrees from +x, long enough for their corners
+      // to reach radius 0.98. Area 8*L*w - 4*w^2/sin(120 degrees): 0.375 of
+      // the disc, as much as strokes this thin can cover, within the band.
+      float half_width = 0.5f * SP_SHAPE_STROKE;
+      vec2 arm = vec2(0.5f, 0.5f * sqrt3);  // 60 degrees from +x
+      float half_length = sqrt(0.98f * 0.98f - half_width * half_width);
+      return sp_cross_distance(p, arm, half_length, half_width);
+    }
+    case SP_SHAPE_PLUS: {
+      // Stout arms (a Swiss cross), area 8*L*w - 4*w^2. The cross function's
+      // arms lie at +-45 degrees; p turned by -45 degrees puts them on the axes.
+      float half_width = 0.24f;
+      float half_length = (area + 4.0f * half_width * half_width) / (8.0f * half_width);
+      const float cos45 = 0.70710678f;
+      vec2 turned = cos45 * vec2(p.x + p.y, p.y - p.x);
+      return sp_cross_distance(turned, vec2(cos45, cos45), half_length, half_width);
+    }
+    case SP_SHAPE_TRIANGLE:
+      // Corners just inside the rim, one on +x: it points where the sound went.
+      return sp_regular_polygon_distance(p, 3.0f, 0.98f);
+    case SP_SHAPE_SQUARE:
+      return sp_box_distance(p, vec2(0.5f * sqrt(area)));
+    case SP_SHAPE_STAR: {
+      // Five points near the rim; area 5*R*r*sin(36 degrees) sets the inner radius.
+      float outer = 0.97f;
+      float inner = area / (5.0f * outer * sin(SP_SHAPE_PI / 5.0f));
+      return sp_star_distance(p, 5.0f, outer, inner);
+    }
+    case SP_SHAPE_HEXAGON:
+      // Area 3*sqrt(3)/2 * R^2, at the top of the band (the disc is at its
+      // bottom): the closest pair of all, told apart only by the corners.
+      return sp_regular_polygon_distance(p, 6.0f, sqrt(2.0f * 1.1f * area / (3.0f * sqrt3)));
+    case SP_SHAPE_CLOVER: {
+      // Three separate discs reaching radius 0.98, apart by a third of the
+      // radius so the gaps survive at small sizes; one on -x, so that the
+      // clover does not point where the triangle does.
+      float lobe_radius = sqrt(SP_SHAPE_AREA_SHARE / 3.0f);
+      vec2 q = sp_fold_to_wedge(vec2(-p.x, p.y), 3.0f);
+      return length(q - vec2(0.98f - lobe_radius, 0.0f)) - lobe_radius;
+    }
+    default:  // SP_SHAPE_DISC, and any unknown id: at the bottom of the band
+      return length(p) - sqrt(0.9f * SP_SHAPE_AREA_SHARE);
+  }
+}
+
+SP_END_NAMESPACE
+
+#endif  // SP_SHAPES_H
