@@ -2,7 +2,7 @@
 // One thread between wavefront iterations: turns the output queue's length
 // into the next indirect dispatch, empties the consumed queue for reuse, and
 // on the step's last iteration folds the step into the running totals and
-// the indicator draw's instance count.
+// sizes the admission of its indicators to the ring (admit.comp).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 
@@ -24,10 +24,11 @@ void main() {
   if (push.finish == 0u) return;
 
   uint made = control.step_indicators;
-  uint capacity = step_input.ring_capacity;
-  control.ring_head = (control.ring_head + made) % capacity;
-  control.ring_filled = min(capacity, control.ring_filled + min(made, capacity));
-  control.draw_instance_count = control.ring_filled;
+  // The admission kernel runs over the step's capture list next.
+  control.admit_group_count_x = group_count(made);
+  control.admit_group_count_y = 1u;
+  control.admit_group_count_z = 1u;
+  control.admit_count = 0u;
   add64(control.total_indicators_lo, control.total_indicators_hi, made);
   add64(control.total_casts_lo, control.total_casts_hi, control.step_casts);
   add64(control.total_rays_lo, control.total_rays_hi, step_input.total_rays);

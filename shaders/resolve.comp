@@ -46,20 +46,14 @@ void main() {
   }
 
   // Indicators: one atomic per subgroup reserves slots in the step's
-  // capture list; the ring slot follows from the step's ring head.
+  // capture list; admit.comp picks the ring's share of them after the step.
   uint total = subgroupAdd(made);
   if (total > 0u) {
     uint base = 0u;
     if (subgroupElect()) base = atomicAdd(control.step_indicators, total);
     base = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(made);
-    if (made > 0u) {
-      capture[base] = indicator;
-      ring[(control.ring_head + base) % step_input.ring_capacity] = indicator;
-    }
-    if (made > 1u) {
-      capture[base + 1u] = sheet_exit;
-      ring[(control.ring_head + base + 1u) % step_input.ring_capacity] = sheet_exit;
-    }
+    if (made > 0u) capture[base] = indicator;
+    if (made > 1u) capture[base + 1u] = sheet_exit;
   }
   append_to_queue(queue_out, alive, resolving, ray_index);
 }

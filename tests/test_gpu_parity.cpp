@@ -5,6 +5,7 @@
 // Vulkan leaves to the driver (division, sqrt). The tolerance below admits
 // those: >= 99.9% of indicators identical within 1e-4 in position and energy.
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -46,6 +47,15 @@ class GpuParity : public test::GpuTest {
     }
     const double fraction = double(identical) / double(cpu.indicators.size());
     EXPECT_GE(fraction, 0.999) << identical << " of " << cpu.indicators.size() << " identical";
+    // The ring admits the same spots (sp_admission.h): but for a diverged
+    // ray's, every live CPU indicator is live on the GPU too.
+    std::set<Key> gpu_live;
+    for (const Indicator& ind : gpu.live) gpu_live.insert({ind.step, ind.iteration, ind.ray_index, ind.kind});
+    std::size_t live_shared = 0;
+    for (const Indicator& c : cpu.live) live_shared += gpu_live.count({c.step, c.iteration, c.ray_index, c.kind});
+    ASSERT_FALSE(cpu.live.empty());
+    EXPECT_GE(double(live_shared), 0.99 * double(cpu.live.size())) << live_shared << " of " << cpu.live.size();
+    EXPECT_NEAR(double(gpu.live.size()), double(cpu.live.size()), 0.01 * double(cpu.live.size()) + 1);
     // Counts: equal but for the rare ray whose path diverged (see fraction).
     const double tolerance = 0.001 * double(cpu.indicators.size()) + 1;
     EXPECT_NEAR(double(gpu.indicators.size()), double(cpu.indicators.size()), tolerance);

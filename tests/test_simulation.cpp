@@ -2,6 +2,7 @@
 // determinism. Expectations are derived by hand from SPEC section 1. The
 // physics shared with the GPU backend lives in test_backends.cpp.
 #include <cmath>
+#include <map>
 #include <set>
 #include <tuple>
 
@@ -195,17 +196,90 @@ TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
   EXPECT_EQ(kept[0].ray_index, 4u);
 }
 
-TEST(Simulation, RingBufferHoldsAtMostMaxIndicators) {
-  Config config = quiet_config();
+Indicator spot(std::uint32_t ray, float size, bool direct) {
+  Indicator ind{};
+  ind.kind = SP_INDICATOR_HIT;
+  ind.ray_index = ray;
+  ind.size = size;
+  ind.bounces = direct ? 0u : 1u;
+  return ind;
+}
+
+TEST(Simulation, RingAdmitsDirectSoundFirstThenTheMostEnergetic) {
+  // indicator_size 1, so size is E / E0. A quota of 4 gives direct sound
+  // 2, sound through walls 1, reflections 1; nothing went through a wall,
+  // so its share goes to reflections: both direct hits, however faint,
+  // then the two strongest reflections.
+  std::vector<Indicator> step = {spot(0, 0.9f, false), spot(1, 0.05f, true), spot(2, 0.2f, false),
+                                 spot(3, 0.7f, false),  spot(4, 0.1f, true),  spot(5, 0.3f, false)};
+  auto admitted = admit(step, 4, 1.0f);
+  std::set<std::uint32_t> rays;
+  for (const Indicator& ind : admitted) rays.insert(ind.ray_index);
+  EXPECT_EQ(rays, (std::set<std::uint32_t>{0, 1, 3, 4}));
+  EXPECT_EQ(admit(step, 10, 1.0f).size(), step.size()) << "under the quota, all are admitted";
+}
+
+TEST(Simulation, RingKeepsAShareForSoundThroughWalls) {
+  // Ten loud direct hits and three faint exits: a quota of 6 gives each
+  // class 2; the exits are shown although every direct hit is louder.
+  std::vector<Indicator> step;
+  for (std::uint32_t r = 0; r < 10; ++r) step.push_back(spot(r, 0.9f - 0.01f * static_cast<float>(r), true));
+  for (std::uint32_t r = 10; r < 13; ++r) {
+    Indicator exit = spot(r, 0.05f * static_cast<float>(r - 9), false);
+    exit.kind = SP_INDICATOR_EXIT;
+    exit.bounces = 0;
+    exit.penetrations = 1;
+    step.push_back(exit);
+  }
+  step.push_back(spot(20, 0.5f, false));
+  step.push_back(spot(21, 0.4f, false));
+  std::set<std::uint32_t> rays;
+  for (const Indicator& ind : admit(step, 6, 1.0f)) rays.insert(ind.ray_index);
+  EXPECT_EQ(rays, (std::set<std::uint32_t>{0, 1, 11, 12, 20, 21}));
+}
+
+TEST(Simulation, RingAdmitsAShareOfSpotsOfEqualWorthRatherThanNone) {
+  // 200 spots in one admission bin against a quota of 20: the tie-break
+  // bins pick some of them, never more than the quota, the same each time.
+  std::vector<Indicator> step;
+  for (std::uint32_t r = 0; r < 200; ++r) step.push_back(spot(r, 0.5f, true));
+  auto admitted = admit(step, 20, 1.0f);
+  EXPECT_GE(admitted.size(), 10u);
+  EXPECT_LE(admitted.size(), 20u);
+  auto again = admit(step, 20, 1.0f);
+  ASSERT_EQ(again.size(), admitted.size());
+  for (std::size_t i = 0; i < admitted.size(); ++i) EXPECT_EQ(again[i].ray_index, admitted[i].ray_index);
+}
+
+TEST(Simulation, RingQuotaTurnsTheRingOverOncePerLifetime) {
+  Config config;
+  config.max_indicators = 20000;
+  config.indicator_lifetime = 1.0f;
+  config.dt = 1.0 / 60.0;
+  EXPECT_EQ(ring_quota(config), 334u);  // ceil(20000 / 60)
+  config.indicator_lifetime = 0.1f;  // shown for 1/3 s at least: ceil(20000 / 20)
+  EXPECT_EQ(ring_quota(config), 1000u);
   config.max_indicators = 50;
   config.indicator_lifetime = 100.0f;
+  EXPECT_EQ(ring_quota(config), 1u);
+}
+
+TEST(Simulation, RingBufferHoldsAtMostMaxIndicators) {
+  Config config = quiet_config();
+  config.max_indicators = 60;
+  config.indicator_lifetime = 0.5f;
+  config.dt = 0.1;  // quota ceil(60 * 0.1 / 0.5) = 12 a step, alive 5 steps
   auto sim = create_cpu_simulator(make_world(closed_room(), config).value()).value();
-  for (int n = 0; n < 3; ++n) ASSERT_TRUE(sim->step().ok());
+  for (int n = 0; n < 8; ++n) ASSERT_TRUE(sim->step().ok());
   auto live = sim->live_indicators().value();
-  EXPECT_EQ(live.size(), 50u);
-  auto last = sim->last_step_indicators().value();
-  ASSERT_GE(last.size(), 50u);
-  EXPECT_EQ(live.back().ray_index, last.back().ray_index);
+  EXPECT_LE(live.size(), 60u);
+  EXPECT_GE(live.size(), 40u);
+  std::map<std::uint32_t, std::uint32_t> per_step;
+  for (const Indicator& ind : live) per_step[ind.step] += 1;
+  for (auto [step, count] : per_step) {
+    EXPECT_GE(step, 3u) << "older than the lifetime";
+    EXPECT_LE(count, 12u) << "step " << step << " admitted more than its quota";
+  }
 }
 
 TEST(Simulation, ApiArgumentsAreValidated) {

@@ -15,7 +15,8 @@ namespace sp {
 
 // The exact CSV header of `soundpaint simulate --indicators` (contract).
 inline constexpr const char* kIndicatorCsvHeader =
-    "step,kind,source,x,y,z,nx,ny,nz,energy,bounces,penetrations,path_length,intensity,size,r,g,b";
+    "step,kind,source,x,y,z,nx,ny,nz,energy,bounces,penetrations,path_length,intensity,size,r,g,b,dx,dy,dz,"
+    "diffractions";
 
 // Streams indicators into a CSV file. Throws sp::Exception (ErrorCode::Io)
 // on failure; the target file appears only after commit().

@@ -17,7 +17,8 @@
 #define SP_BINDING_RING 8
 #define SP_BINDING_CAPTURE 9
 #define SP_BINDING_COUNTERS 10
-#define SP_BINDING_COUNT 11
+#define SP_BINDING_ADMISSION 11
+#define SP_BINDING_COUNT 12
 
 // Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
 // order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as
@@ -57,14 +58,16 @@ struct QueueArgs {
 // GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the
 // indicator draw instances from.
 struct Control {
-  QueueArgs queues[2];
+  // First, so that a draw pass can bind it from offset 0 whatever the
+  // device's storage-buffer offset alignment.
   uint draw_vertex_count;
   uint draw_instance_count;
   uint draw_first_vertex;
   uint draw_first_instance;
+  QueueArgs queues[2];
   uint ring_head;        // next ring slot at the start of a step
   uint ring_filled;      // slots holding an indicator, <= capacity
-  uint step_indicators;  // indicators appended by the current step
+  uint step_indicators;  // indicators the current step created (its capture list)
   uint step_casts;       // casts of the current step
   uint total_indicators_lo;
   uint total_indicators_hi;
@@ -74,6 +77,17 @@ struct Control {
   uint steps;
   uint total_rays_lo;
   uint total_rays_hi;
+  // Admission of the step's indicators to the ring (sp_ring.h): a dispatch
+  // over the capture list, and how many were admitted
+  // (the plan lives in the admission buffer, sp_admission.h).
+  uint admit_group_count_x;
+  uint admit_group_count_y;
+  uint admit_group_count_z;
+  uint admit_count;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+  uint pad3;
 };
 
 // Written by the host before each step's submit.
@@ -83,7 +97,19 @@ struct StepInput {
   uint source_count;    // entries used in the step's source table
   uint ring_capacity;   // max_indicators
   uint layer_count;
+  uint ring_quota;             // indicators the ring admits per step (sp_ring.h)
+  float inv_indicator_size;    // 1 / indicator_size, 0 when it is 0
+  uint pad0;
+  uint pad1;
 };
+
+// Push constants of the admission kernel (admit.comp).
+#define SP_ADMIT_HISTOGRAM 0u
+#define SP_ADMIT_SELECT 1u
+#define SP_ADMIT_TIEBREAK_HISTOGRAM 2u
+#define SP_ADMIT_TIEBREAK_SELECT 3u
+#define SP_ADMIT_COPY 4u
+#define SP_ADMIT_FINISH 5u
 
 // Push constants of the wavefront kernels.
 struct WavefrontPush {

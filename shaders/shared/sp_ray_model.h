@@ -29,9 +29,9 @@ SP_INLINE RayState sp_emit_ray(StepSource source, uint source_slot, uint ray_ind
   r.max_distance = source.max_distance;
   r.loudness = source.loudness;
   r.entry_triangle = SP_INVALID;
+  r.diffractions = 0u;
   r.pad0 = 0u;
   r.pad1 = 0u;
-  r.pad2 = 0u;
   return r;
 }
 
@@ -59,11 +59,13 @@ SP_INLINE Indicator sp_make_indicator(uint kind, RayState r, StepSource source, 
   ind.size = size;
   ind.color = source.color;
   ind.intensity = source.intensity;
+  ind.dir = r.dir;
+  ind.path_length = r.travelled;
   ind.kind = kind;
   ind.source_id = source.source_id;
   ind.bounces = r.bounces;
   ind.penetrations = r.penetrations;
-  ind.path_length = r.travelled;
+  ind.diffractions = r.diffractions;
   ind.step = p.step;
   ind.ray_index = r.ray_index;
   ind.iteration = r.casts;

@@ -148,13 +148,13 @@ struct RayState {
   float max_distance; // D_max of its source
   float loudness;     // E0 of its source
   uint entry_triangle;  // leaf-order index of the entry face while ResolvingPenetration
+  uint diffractions;    // times the ray turned at an edge (docs/model.md, "Diffraction")
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
-// One indicator, 80 bytes. iteration and ray_index give the canonical order
-// (step, iteration, ray_index) in which both backends list indicators.
+// One indicator, 96 bytes. iteration and ray_index give the canonical order
+// (step, iteration, ray_index, kind) in which both backends list them.
 struct Indicator {
   vec3 position;
   float energy;
@@ -162,11 +162,13 @@ struct Indicator {
   float size;   // indicator_size * E / E0
   vec3 color;
   float intensity;
+  vec3 dir;     // the ray's direction of travel: incoming (hit), outgoing (exit)
+  float path_length;
   uint kind;    // SP_INDICATOR_*
   uint source_id;
   uint bounces;
   uint penetrations;
-  float path_length;
+  uint diffractions;
   uint step;
   uint ray_index;
   uint iteration;

@@ -22,17 +22,18 @@ static_assert(sizeof(StepSource) == 48 && offsetof(StepSource, color) == 16 && o
 static_assert(sizeof(RayState) == 96 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 &&
               offsetof(RayState, entry_layer) == 44 && offsetof(RayState, state) == 48 &&
               offsetof(RayState, loudness) == 76 && offsetof(RayState, entry_triangle) == 80);
-static_assert(sizeof(Indicator) == 80 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 &&
-              offsetof(Indicator, kind) == 48 && offsetof(Indicator, iteration) == 76);
+static_assert(sizeof(Indicator) == 96 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 &&
+              offsetof(Indicator, dir) == 48 && offsetof(Indicator, path_length) == 60 &&
+              offsetof(Indicator, kind) == 64 && offsetof(Indicator, iteration) == 92);
 static_assert(sizeof(HitInfo) == 8);
 static_assert(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) == 8);
 static_assert(sizeof(QueueArgs) == 48 && offsetof(QueueArgs, active_groups_x) == 16 &&
               offsetof(QueueArgs, resolving_groups_x) == 32);
-static_assert(sizeof(Control) == 160 && offsetof(Control, draw_vertex_count) == 96 &&
-              offsetof(Control, ring_head) == 112);
+static_assert(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 &&
+              offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 // StepSource[] follows StepInput in one buffer; std430 places it at the
 // array's alignment (16, from vec3), which sizeof(StepInput) already is.
-static_assert(sizeof(StepInput) == 48 && sizeof(StepInput) % 16 == 0);
+static_assert(sizeof(StepInput) == 64 && sizeof(StepInput) % 16 == 0);
 static_assert(sizeof(WavefrontPush) == 16);
 static_assert(alignof(BvhNode) == 4 && alignof(Indicator) == 4);
 

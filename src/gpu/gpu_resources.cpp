@@ -4,11 +4,14 @@
 #include <cstring>
 #include <string>
 
+#include "admit.comp.spv.h"
 #include "emit.comp.spv.h"
 #include "gpu/gpu_layout_checks.h"
+#include "sp_admission.h"
 #include "prepare.comp.spv.h"
 #include "resolve.comp.spv.h"
 #include "sim/step_plan.h"
+#include "sp_ring.h"
 #include "trace.comp.spv.h"
 #include "trace_matter.comp.spv.h"
 
@@ -27,11 +30,14 @@ VkDeviceSize bytes(std::uint64_t count) {
 class StagingPlan {
  public:
   template <class T>
+  // `data` is read by fill(), later: it must outlive the plan.
   void add(const vk::Buffer& destination, const std::vector<T>& data) {
     parts_.push_back({&destination, size_, data.size() * sizeof(T)});
     sources_.push_back(data.data());
     size_ += (data.size() * sizeof(T) + 15) / 16 * 16;
   }
+  template <typename T>
+  void add(const vk::Buffer&, const std::vector<T>&&) = delete;  // a temporary would dangle
 
   void fill(vk::Context& context, GpuResources& r) {
     r.initial_staging = vk::Buffer(context, std::max<VkDeviceSize>(size_, 16), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -95,23 +101,28 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   // per layer: SP_COUNTERS_PER_LAYER step counters, then as many (lo, hi) totals
   counters = vk::Buffer(context, bytes<std::uint32_t>(layer_count * SP_COUNTERS_PER_LAYER * 3), kStorage | kTransfer,
                         vk::MemoryUsage::DeviceLocal, "layer counters");
+  admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE), kStorage | kTransfer,
+                         vk::MemoryUsage::DeviceLocal, "ring admission histogram");
   control_readback = vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback,
                                 "control readback");
 
   std::vector<shader::Control> initial(1);
   initial[0].draw_vertex_count = 6;  // one quad per indicator instance, as two triangles
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
+  const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE, 0u);
   StagingPlan staging;
   staging.add(nodes, world.bvh.nodes);
   staging.add(triangles, world.bvh.triangles);
   staging.add(layers, layer_table);
   staging.add(control, initial);
   staging.add(counters, zeros);
+  staging.add(admission, empty_admission);
   staging.fill(context, *this);
 
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
   const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes, &triangles, &layers, &step_input, &rays,   &hits,
-                                               &queues, &control,  &ring,   &capture,    &counters};
+                                               &queues, &control,  &ring,   &capture,    &counters,
+                                               &admission};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
@@ -121,6 +132,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
       vk::ComputePipeline(context, sp_spirv_trace_matter_comp, bindings.layout(), push, "trace_matter");
   kernels.resolve = vk::ComputePipeline(context, sp_spirv_resolve_comp, bindings.layout(), push, "resolve");
   kernels.prepare = vk::ComputePipeline(context, sp_spirv_prepare_comp, bindings.layout(), push, "prepare");
+  kernels.admit = vk::ComputePipeline(context, sp_spirv_admit_comp, bindings.layout(), push, "admit");
 }
 
 }  // namespace sp::gpu

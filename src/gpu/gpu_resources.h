@@ -22,6 +22,7 @@ struct Kernels {
   vk::ComputePipeline trace_matter;
   vk::ComputePipeline resolve;
   vk::ComputePipeline prepare;
+  vk::ComputePipeline admit;
 };
 
 struct GpuResources {
@@ -46,6 +47,7 @@ struct GpuResources {
   vk::Buffer control;                   // queue args, draw args, totals
   vk::Buffer ring, capture;             // indicators
   vk::Buffer counters;                  // per-layer counters
+  vk::Buffer admission;                 // the step's admission histogram (sp_ring.h)
   vk::Buffer control_readback;          // copy of control after each step
 
   // Initial contents, copied by the first recorded step: where each part

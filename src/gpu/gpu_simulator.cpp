@@ -14,6 +14,7 @@
 #include "gpu/step_engine.h"
 #include "sim/memory_estimate.h"
 #include "sim/step_plan.h"
+#include "sp_ring.h"
 #include "vk/handle.h"
 #include "vk/vk_check.h"
 
@@ -115,10 +116,12 @@ class GpuSimulator final : public Simulator {
         vk::download(context_, resources_.ring, stored.data(), stored.size() * sizeof(Indicator));
       std::vector<Indicator> live;
       if (steps_run_ == 0) return live;
-      const std::uint64_t now = steps_run_ - 1;
+      const Config& config = scene_.world().config;
+      const auto now = static_cast<std::uint32_t>(steps_run_ - 1);
       for (const Indicator& ind : stored) {
-        double age = static_cast<double>(now - std::min<std::uint64_t>(now, ind.step)) * scene_.world().config.dt;
-        if (age < scene_.world().config.indicator_lifetime) live.push_back(ind);
+        // The draw's age and rule (sp_ring.h): what is live is what is drawn.
+        if (shader::sp_indicator_age(now, ind.step, static_cast<float>(config.dt)) < config.indicator_lifetime)
+          live.push_back(ind);
       }
       sort_canonically(live);
       return live;

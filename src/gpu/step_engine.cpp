@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gpu/step_recorder.h"
+#include "sim/indicator_ring.h"
 #include "vk/barriers.h"
 
 namespace sp::gpu {
@@ -125,6 +126,8 @@ void StepEngine::record_step_input(VkCommandBuffer cmd, const World& world, std:
   input.source_count = static_cast<std::uint32_t>(plan_.sources.size());
   input.ring_capacity = resources_.ring_capacity;
   input.layer_count = resources_.layer_count;
+  input.ring_quota = ring_quota(world.config);
+  input.inv_indicator_size = inverse_indicator_size(world.config);
   const std::size_t source_bytes = plan_.sources.size() * sizeof(shader::StepSource);
   step_input_bytes_.resize(sizeof input + source_bytes);
   std::memcpy(step_input_bytes_.data(), &input, sizeof input);

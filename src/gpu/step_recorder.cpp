@@ -29,7 +29,7 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
 
   for (std::uint32_t it = 0; it < r.iterations; ++it) {
     const std::uint32_t queue_in = it % 2;
-    const VkDeviceSize args = queue_in * sizeof(shader::QueueArgs);
+    const VkDeviceSize args = offsetof(shader::Control, queues) + queue_in * sizeof(shader::QueueArgs);
     bind(cmd, r, r.kernels.trace, queue_in, 0);
     vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, active_groups_x));
     // The two write the hits of disjoint rays: no barrier between them.
@@ -45,6 +45,23 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
     vkCmdDispatch(cmd, 1, 1, 1);
     // Prepare's group count is the next iteration's indirect argument.
     vk::compute_to_compute(cmd);
+  }
+
+  // The ring admits its share of the step's indicators (admit.comp), each
+  // phase reading what the one before wrote. The histogram and copy phases
+  // run over the capture list; the planning ones are a single thread.
+  const VkDeviceSize admit_args = offsetof(shader::Control, admit_group_count_x);
+  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM,        SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
+                                  SP_ADMIT_TIEBREAK_SELECT, SP_ADMIT_COPY,   SP_ADMIT_FINISH};
+  for (std::uint32_t phase : phases) {
+    if (phase != SP_ADMIT_HISTOGRAM) vk::compute_to_compute(cmd);
+    bind(cmd, r, r.kernels.admit, 0, phase);
+    const bool over_capture =
+        phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM || phase == SP_ADMIT_COPY;
+    if (over_capture)
+      vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
+    else
+      vkCmdDispatch(cmd, 1, 1, 1);
   }
 }
 

@@ -59,6 +59,10 @@ void IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
     append_float(out, ind.color.r);
     append_float(out, ind.color.g);
     append_float(out, ind.color.b);
+    append_float(out, ind.dir.x);
+    append_float(out, ind.dir.y);
+    append_float(out, ind.dir.z);
+    append_uint(out, ind.diffractions);
     out.back() = '\n';
   }
   impl_->file.write(out);

@@ -69,7 +69,7 @@ class CpuSimulator final : public Simulator {
       (void)scene_.update_geometry();
       scene_.plan(step, plan_);
       runner_.run(scene_.world().bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_);
-      ring_.push(last_.indicators);
+      ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
       totals_.steps += 1;
@@ -85,6 +85,8 @@ class CpuSimulator final : public Simulator {
   SoundScene scene_;
   CpuStepRunner runner_;
   IndicatorRing ring_;
+  std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
+  float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
   std::vector<shader::LayerAcoustics> layer_table_;
   StepPlan plan_;
   CpuStepOutput last_;

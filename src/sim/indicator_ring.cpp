@@ -1,8 +1,45 @@
 #include "sim/indicator_ring.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "sp_admission.h"
 
 namespace sp {
+
+float display_lifetime(const Config& config) { return std::max(config.indicator_lifetime, SP_MIN_DISPLAY_LIFETIME); }
+
+std::uint32_t ring_quota(const Config& config) {
+  const double per_lifetime = static_cast<double>(display_lifetime(config)) / config.dt;
+  const double quota = std::ceil(static_cast<double>(config.max_indicators) / std::max(per_lifetime, 1.0));
+  return static_cast<std::uint32_t>(std::clamp(quota, 1.0, static_cast<double>(config.max_indicators)));
+}
+
+float inverse_indicator_size(const Config& config) {
+  return config.indicator_size > 0.0f ? 1.0f / config.indicator_size : 0.0f;
+}
+
+std::vector<Indicator> admit(std::span<const Indicator> step, std::uint32_t quota, float inverse_indicator_size) {
+  if (step.size() <= quota) return {step.begin(), step.end()};
+  // The GPU's admit.comp, phase by phase, over one buffer of the same shape.
+  std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer{};
+  std::uint32_t* histogram = buffer.data();
+  for (const Indicator& ind : step) histogram[shader::sp_admission_bin(ind, inverse_indicator_size)] += 1;
+  shader::sp_plan_admission(histogram, quota);
+  std::fill_n(histogram, SP_ADMISSION_BINS, 0u);
+  for (const Indicator& ind : step)
+    if (shader::sp_in_tiebreak_bin(histogram, shader::sp_admission_bin(ind, inverse_indicator_size)))
+      histogram[shader::sp_admission_tiebreak(ind)] += 1;
+  shader::sp_plan_tiebreak(histogram, SP_ADMISSION_CLASSES);
+  std::vector<Indicator> admitted;
+  admitted.reserve(quota);
+  for (const Indicator& ind : step)
+    if (shader::sp_admitted(histogram, shader::sp_admission_bin(ind, inverse_indicator_size),
+                            shader::sp_admission_tiebreak(ind)))
+      admitted.push_back(ind);
+  return admitted;
+}
 
 void IndicatorRing::push(std::span<const Indicator> indicators) {
   const std::uint64_t capacity = slots_.size();
@@ -22,8 +59,9 @@ std::vector<Indicator> IndicatorRing::live(std::uint64_t now, double dt, double 
   std::vector<Indicator> result;
   for (std::uint64_t k = total_ - stored; k < total_; ++k) {
     const Indicator& indicator = slots_[k % capacity];
-    double age = static_cast<double>(now - std::min<std::uint64_t>(now, indicator.step)) * dt;
-    if (age < lifetime) result.push_back(indicator);
+    // The draw's age and rule (sp_ring.h): what is live is what is drawn.
+    const float age = shader::sp_indicator_age(static_cast<std::uint32_t>(now), indicator.step, static_cast<float>(dt));
+    if (age < static_cast<float>(lifetime)) result.push_back(indicator);
   }
   return result;
 }

@@ -1,4 +1,7 @@
-// The ring buffer of SPEC 1.4: max_indicators entries, the oldest overwritten.
+// The indicator ring of SPEC 1.4 and its admission rule (shaders/shared/
+// sp_ring.h, docs/model.md "The ring"): each step admits at most its quota
+// of the step's indicators, the most informative first, so that admitted
+// spots live out their lifetime; the oldest slots are overwritten.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +11,24 @@
 #include "soundpaint/simulation.h"
 
 namespace sp {
+
+// How long the display shows a spot: indicator_lifetime, but never under
+// SP_MIN_DISPLAY_LIFETIME (sp_ring.h).
+float display_lifetime(const Config& config);
+
+// How many of a step's indicators the ring admits: ceil(capacity * dt /
+// display lifetime), in [1, capacity], so that the ring turns over once per
+// lifetime.
+std::uint32_t ring_quota(const Config& config);
+
+// 1 / indicator_size, or 0 when indicator_size is 0 (every spot is then
+// invisible and equally informative).
+float inverse_indicator_size(const Config& config);
+
+// The indicators of `step` (in canonical order) that the ring admits, in
+// that order: those whose admission bin is at or above the threshold that
+// keeps them within `quota` (sp_admission_threshold).
+std::vector<Indicator> admit(std::span<const Indicator> step, std::uint32_t quota, float inverse_indicator_size);
 
 class IndicatorRing {
  public:

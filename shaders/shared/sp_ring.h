@@ -1,0 +1,93 @@
+// The indicator ring's rules, shared by GLSL and C++: how old an indicator
+// is, how opaque, and which of a step's indicators the ring admits
+// (docs/model.md, "The ring: spots that live out their lifetime").
+//
+// A step makes far more indicators than the ring can show for a whole
+// lifetime: at 500 rays a step, about 4,000 against a ring of 20,000, which
+// the paper's newest-first ring would overwrite within 5 steps, so spots
+// would live a twelfth of their second and never fade. Instead, each step
+// admits at most `quota` = ceil(capacity * dt / lifetime) indicators, so the
+// ring turns over once per lifetime and every admitted spot lives it out;
+// the most informative are kept: a share each for direct sound (first
+// hits), sound through walls and reflections, and within each by energy
+// relative to the source's loudness (E / E0, so a quiet or distant
+// source's strongest spots compete with a loud one's on equal terms). Every indicator still reaches the CSV
+// and the stats: admission only decides what is drawn.
+#ifndef SP_RING_H
+#define SP_RING_H
+
+#include "sp_types.h"
+
+// The display never shows a spot for less than this (seconds), whatever
+// indicator_lifetime says: each spot then brightens and fades at most once
+// per 1/3 s, under the three-flashes-per-second limit of WCAG 2.3.1. The
+// ring's quota counts with it, so a spot is not overwritten before.
+#define SP_MIN_DISPLAY_LIFETIME (1.0f / 3.0f)
+
+// Admission sorts a step's indicators into three classes, each with its
+// own share of the quota, so that sound through walls is not crowded out by
+// the louder sound in the source's own room: direct sound (first hits),
+// sound that crossed matter (exits, and anything after a penetration), and
+// the rest (reflections, diffraction). Within a class, bins by E / E0.
+#define SP_ADMISSION_CLASSES 3u
+#define SP_ADMISSION_LEVELS 512u
+#define SP_ADMISSION_BINS (SP_ADMISSION_CLASSES * SP_ADMISSION_LEVELS)
+#define SP_ADMISSION_CLASS_DIRECT 0u
+#define SP_ADMISSION_CLASS_THROUGH 1u
+#define SP_ADMISSION_CLASS_REFLECTED 2u
+
+SP_BEGIN_NAMESPACE
+
+// Age of an indicator born at step `birth`, seen at step `now`, in seconds.
+SP_INLINE float sp_indicator_age(uint now, uint birth, float dt) {
+  uint steps = now >= birth ? now - birth : 0u;
+  return float(steps) * dt;
+}
+
+// SPEC 1.4: opacity at age a is I * max(0, 1 - a / lifetime).
+SP_INLINE float sp_indicator_opacity(float intensity, float age, float lifetime) {
+  return intensity * max(0.0f, 1.0f - age / lifetime);
+}
+
+// Direct sound: a hit of a ray that has neither reflected, penetrated nor
+// diffracted.
+SP_INLINE bool sp_is_direct(Indicator ind) {
+  return ind.kind == SP_INDICATOR_HIT && ind.bounces == 0u && ind.penetrations == 0u && ind.diffractions == 0u;
+}
+
+SP_INLINE uint sp_admission_class(Indicator ind) {
+  if (sp_is_direct(ind)) return SP_ADMISSION_CLASS_DIRECT;
+  if (ind.kind == SP_INDICATOR_EXIT || ind.penetrations > 0u) return SP_ADMISSION_CLASS_THROUGH;
+  return SP_ADMISSION_CLASS_REFLECTED;
+}
+
+// The admission bin of `ind`: its class's section, then its level of
+// E / E0. inv_indicator_size = 1 / indicator_size (0 when the size is 0),
+// so that size * inv_indicator_size is E / E0 with multiplications only,
+// which round alike on every device.
+SP_INLINE uint sp_admission_bin(Indicator ind, float inv_indicator_size) {
+  SP_PRECISE float relative = ind.size * inv_indicator_size;
+  SP_PRECISE float scaled = min(max(relative, 0.0f), 1.0f) * float(SP_ADMISSION_LEVELS - 1u);
+  uint level = uint(scaled);
+  return sp_admission_class(ind) * SP_ADMISSION_LEVELS + level;
+}
+
+// Within the bin where a class's share runs out, indicators are admitted by
+// a tie-break bin in their class's section: a hash of what tells them apart
+// (ray, step, event) over SP_ADMISSION_LEVELS, so that a bin larger than the whole quota (a
+// small ring, or many spots of equal energy) still yields its share rather
+// than nothing, in an order both backends agree on.
+SP_INLINE uint sp_admission_tiebreak(Indicator ind) {
+  uint h = ind.ray_index * 0x9E3779B1u ^ ind.step * 0x85EBCA77u ^ ind.iteration * 0x27D4EB2Fu;
+  h ^= (ind.bounces | (ind.penetrations << 8u) | (ind.diffractions << 16u) | (ind.kind << 24u)) * 0xC2B2AE3Du;
+  h ^= h >> 16u;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15u;
+  h *= 0x846CA68Bu;
+  h ^= h >> 16u;
+  return sp_admission_class(ind) * SP_ADMISSION_LEVELS + h % SP_ADMISSION_LEVELS;
+}
+
+SP_END_NAMESPACE
+
+#endif  // SP_RING_H
