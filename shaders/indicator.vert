@@ -2,46 +2,97 @@
 // Indicator pass, vertex stage: one instance per ring slot, drawn with the
 // VkDrawIndirectCommand the compute pass (or the host, for the CPU backend)
 // wrote. The indicator comes from gl_InstanceIndex, the quad corner from
-// gl_VertexIndex; the quad lies in the indicator's surface plane, lifted
-// along its normal so it wins the depth test against that surface.
+// gl_VertexIndex. The quad lies in the indicator's surface plane, lifted
+// along its normal so it wins the depth test against that surface, and
+// turned so that its +x axis is the sound's direction of travel projected
+// onto the surface: the shape sits at the hit, a comet's tail trails back
+// towards where the sound came from (docs/accessibility.md).
 #extension GL_GOOGLE_include_directive : require
-#include "sp_draw_types.h"
+#include "indicator_bindings.glsl"
 
-layout(std430, set = 0, binding = 0) readonly buffer RingBuffer { Indicator ring[]; };
 layout(std430, push_constant) uniform Push { IndicatorPush push; };
 
-layout(location = 0) out vec2 out_corner;  // in [-1, 1]^2 across the quad
-layout(location = 1) flat out vec4 out_color;  // rgb, opacity
+layout(location = 0) out vec2 out_local;        // the spot's frame, in units of its radius: the shape is |p| <= 1
+layout(location = 1) flat out vec4 out_color;   // rgb, opacity
+layout(location = 2) flat out vec4 out_shape;   // shape id, tail length (radii), 1 for direct sound, radius (m)
+layout(location = 3) out vec3 out_world;        // the fragment's point on the quad, world space
+layout(location = 4) flat out vec3 out_anchor;  // the spot's centre on the quad, world space
 
-// Two counter-clockwise triangles covering [-1, 1]^2.
+// The quad's corners in the spot's frame, before its extents are applied:
+// two counter-clockwise triangles covering [-1, 1]^2.
 const vec2 kCorners[SP_INDICATOR_QUAD_VERTICES] =
     vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
 
+// Room around the shape for the anti-aliased edge and the halo, in radii.
+const float kMargin = 0.45;
+// Tail length, in radii, when the sound grazes the surface; head-on it has
+// no direction along the surface and no tail.
+const float kMaxTail = 1.6;
+// Direct sound (first hits) stands out: larger and at full strength, while
+// everything reflected or transmitted is drawn a little fainter.
+const float kDirectSize = 1.25;
+const float kIndirectOpacity = 0.75;
+
+void collapse() {
+  // Every corner at the same point outside the clip volume: the instance
+  // rasterises nothing.
+  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+  out_local = vec2(0.0);
+  out_color = vec4(0.0);
+  out_shape = vec4(0.0);
+  out_world = vec3(0.0);
+  out_anchor = vec3(0.0);
+}
+
 void main() {
-  Indicator ind = ring[gl_InstanceIndex];
-  // SPEC 1.4: opacity at age a is I * max(0, 1 - a / lifetime).
-  uint age_steps = push.current_step >= ind.step ? push.current_step - ind.step : 0u;
-  float age = float(age_steps) * push.dt;
-  float opacity = ind.intensity * max(0.0, 1.0 - age / push.lifetime);
+  uint slot = gl_InstanceIndex;
+  Indicator ind = ring[slot];
+  DisplaySource source = sources[ind.source_id];
+  float age = sp_indicator_age(push.current_step, ind.step, push.dt);
+  float opacity = sp_indicator_opacity(ind.intensity, age, push.lifetime);
+  // A fade-in, so a spot never pops on (docs/accessibility.md, flashing).
+  opacity *= min(1.0, (age + push.dt) / SP_FADE_IN_SECONDS);
+  bool direct = sp_is_direct(ind);
+  opacity *= direct ? 1.0 : kIndirectOpacity;
+  bool live = age < push.lifetime;
+  if (live) opacity = max(opacity * push.opacity_scale, push.min_opacity);
+  opacity = min(opacity, 1.0);
+  bool hidden = (source.shape_flags & SP_SOURCE_HIDDEN) != 0u;
+  bool capped = (push.flags & SP_DRAW_CAPS) != 0u && visible[slot] == 0u;
   // A spot facing away from the eye lies on the far side of its surface,
   // which hides it; skipping it saves rasterising what depth would reject.
   bool facing_away = dot(ind.normal, push.eye - ind.position) <= 0.0;
-  if (opacity < SP_MIN_VISIBLE_ALPHA || ind.size <= 0.0 || facing_away) {
-    // Expired, invisible or hidden: every corner at the same point outside
-    // the clip volume, so the instance rasterises nothing.
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-    out_corner = vec2(0.0);
-    out_color = vec4(0.0);
+  if (!live || opacity < SP_MIN_VISIBLE_ALPHA || ind.size <= 0.0 || hidden || capped || facing_away) {
+    collapse();
     return;
   }
+
   vec3 n = normalize(ind.normal);
+  // The spot's +x: the direction of travel along the surface; any
+  // direction in the plane when the sound arrives head-on.
+  vec3 along = ind.dir - n * dot(ind.dir, n);
+  float along_length = length(along);
   vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 tangent = normalize(cross(helper, n));
+  vec3 tangent = along_length > 1.0e-3 ? along / along_length : normalize(cross(helper, n));
   vec3 bitangent = cross(n, tangent);
+  float tail = (push.flags & SP_DRAW_DIRECTION) != 0u ? kMaxTail * min(along_length, 1.0) : 0.0;
+
+  // Radius: the SPEC's size (a diameter) scaled, but never under
+  // min_pixels across on screen, where a shape stops being recognisable.
+  float radius = 0.5 * ind.size * push.size_scale * (direct ? kDirectSize : 1.0);
+  vec4 centre_clip = push.view_proj * vec4(ind.position, 1.0);
+  float distance = max(centre_clip.w, 1.0e-3);
+  radius = max(radius, 0.5 * push.min_pixels * distance / push.pixel_scale);
+
   vec2 corner = kCorners[gl_VertexIndex];
-  float radius = 0.5 * ind.size;  // size is the disc's diameter
-  vec3 p = ind.position + n * SP_INDICATOR_LIFT + (tangent * corner.x + bitangent * corner.y) * radius;
-  out_corner = corner;
+  // x from the tail's end to past the head, y across: both with the margin.
+  vec2 local = vec2(corner.x < 0.0 ? -(1.0 + tail) - kMargin : 1.0 + kMargin, corner.y * (1.0 + kMargin));
+  vec3 anchor = ind.position + n * SP_INDICATOR_LIFT;
+  vec3 p = anchor + (tangent * local.x + bitangent * local.y) * radius;
+  out_local = local;
   out_color = vec4(ind.color, opacity);
+  out_shape = vec4(float(source.shape_flags & 0xFFu), tail, direct ? 1.0 : 0.0, radius);
+  out_world = p;
+  out_anchor = anchor;
   gl_Position = push.view_proj * vec4(p, 1.0);
 }

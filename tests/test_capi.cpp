@@ -247,6 +247,11 @@ TEST_F(CapiSimulation, QuadInFrontOfTheSourceCatchesTheRaysHeadingToIt) {
     EXPECT_EQ(ind.source_id, 0u) << i;
     EXPECT_EQ(ind.bounces, 0u) << i;
     EXPECT_EQ(ind.step, 0u) << i;
+    // A ray from the origin: its direction is its hit point, normalised.
+    const float len = std::sqrt(ind.position[0] * ind.position[0] + ind.position[1] * ind.position[1] + 1.0f);
+    EXPECT_NEAR(ind.direction[0], ind.position[0] / len, 1e-5f) << i;
+    EXPECT_NEAR(ind.direction[2], 1.0f / len, 1e-5f) << i;
+    EXPECT_EQ(ind.diffractions, 0u) << i;
     EXPECT_EQ(ind.intensity, 1.0f) << i;  // listener on the source
   }
   // A smaller capacity writes a prefix and still reports the full count.
@@ -406,7 +411,7 @@ TEST(CapiSourceDesc, InitGivesTheLibraryDefaults) {
   sp_source_desc_init(&desc);
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(desc.position[k], 0.0f);
-    EXPECT_EQ(desc.color[k], 1.0f);
+    EXPECT_EQ(desc.color[k], -1.0f);  // no colour of its own: its category's palette colour
   }
   EXPECT_EQ(desc.category, nullptr);  // "sound"
   EXPECT_EQ(desc.max_distance, 30.0f);

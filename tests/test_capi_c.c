@@ -59,6 +59,7 @@ static int scene_controls(sp_simulation* simulation) {
   sp_source_desc_init(&desc);
   desc.position[0] = 0.5f;
   desc.position[1] = 1.0f;
+  desc.color[0] = 1.0f; /* its own red; all three left at -1 would take the palette's colour for "alarm" */
   desc.color[1] = 0.0f;
   desc.color[2] = 0.0f;
   desc.category = "alarm";

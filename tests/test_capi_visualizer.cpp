@@ -134,7 +134,9 @@ TEST_F(CapiHost, SceneControlsWorkOnAVisualizer) {
   sp_source_desc desc;
   sp_source_desc_init(&desc);
   desc.position[0] = 2.0f;
-  desc.color[0] = 0.0f;
+  desc.color[0] = 0.0f;  // cyan, its own
+  desc.color[1] = 1.0f;
+  desc.color[2] = 1.0f;
   std::uint32_t id = 0;
   ASSERT_EQ(sp_sound_scene_add_source(sound, &desc, &id), SP_OK) << last_error();
   EXPECT_EQ(id, 1u);

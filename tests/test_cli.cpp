@@ -54,10 +54,20 @@ TEST(Cli, SimulateWritesTheContractCsvAndStats) {
     hits += layer["hits"].get<std::uint64_t>();
   }
   EXPECT_GE(hits, stats["indicators"].get<std::uint64_t>() / 2);
-  // every row has 18 fields and a known kind; the step column counts up
+  // every row has 22 fields and a known kind; the step column counts up;
+  // dx,dy,dz is the unit direction of travel: into the surface for a hit
+  // (against the normal, which faces the ray's side), out of it for an exit
   int last_step = -1;
   for (std::size_t k = 1; k < csv.size(); ++k) {
-    EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 17) << csv[k];
+    EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 21) << csv[k];
+    std::vector<double> f;
+    std::stringstream fields(csv[k]);
+    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell == "hit" || cell == "exit" ? 0.0 : std::stod(cell));
+    ASSERT_EQ(f.size(), 22u);
+    const double dx = f[18], dy = f[19], dz = f[20], along_normal = dx * f[6] + dy * f[7] + dz * f[8];
+    EXPECT_NEAR(dx * dx + dy * dy + dz * dz, 1.0, 1e-5) << csv[k];
+    EXPECT_TRUE(csv[k].find(",hit,") != std::string::npos ? along_normal < 0.0 : along_normal > 0.0) << csv[k];
+    EXPECT_EQ(f[21], 0.0) << "no diffraction without the key";
     int step = std::stoi(csv[k]);
     EXPECT_GE(step, last_step);
     last_step = step;

@@ -19,6 +19,7 @@
 #include <glm/matrix.hpp>
 
 #include "soundpaint/simulation.h"
+#include "sp_shapes.h"
 #include "support/render_checks.h"
 #include "support/run_command.h"
 
@@ -92,9 +93,13 @@ Projected project(const Camera& camera, const Indicator& indicator) {
   return p;
 }
 
-// Marks the pixels an indicator's disc may touch, with 1.5 px of slack.
+// Marks the pixels an indicator's spot may touch: its shape, at least
+// SP_SHAPE_MIN_PIXELS across and a quarter larger for direct sound, its
+// tail of up to 1.6 radii behind it, the halo's margin of 0.45 radii, and
+// 1.5 px of slack (shaders/indicator.vert).
 void mark_disc(std::vector<bool>& mask, const Projected& p) {
-  const float reach = p.radius + 1.5f;
+  const float radius = std::max(1.25f * p.radius, 0.5f * SP_SHAPE_MIN_PIXELS);
+  const float reach = radius * (1.0f + 1.6f + 0.45f) + 1.5f;
   const int x0 = std::max(0, static_cast<int>(p.x - reach));
   const int x1 = std::min(static_cast<int>(kWidth) - 1, static_cast<int>(p.x + reach));
   const int y0 = std::max(0, static_cast<int>(p.y - reach));
@@ -112,13 +117,15 @@ bool in_image(float x, float y, float margin) {
   return x >= margin && y >= margin && x < kWidth - margin && y < kHeight - margin;
 }
 
-// Some pixel within 1 px of (x, y) has the indicator's colour: saturated,
-// with the source colour's strongest channel strongest.
+// Some pixel within 3 px of (x, y) has the indicator's colour: saturated,
+// with the source colour's strongest channel strongest. (Spots are at
+// least 16 px across; a neighbour's halo may cover this one's centre.)
 bool shows_colour(const draw::RgbaImage& image, float x, float y, glm::vec3 colour) {
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      const Rgb c = test::pixel(image, static_cast<std::uint32_t>(static_cast<int>(x) + dx),
-                                static_cast<std::uint32_t>(static_cast<int>(y) + dy));
+  for (int dy = -3; dy <= 3; ++dy)
+    for (int dx = -3; dx <= 3; ++dx) {
+      const int px = std::clamp(static_cast<int>(x) + dx, 0, static_cast<int>(kWidth) - 1);
+      const int py = std::clamp(static_cast<int>(y) + dy, 0, static_cast<int>(kHeight) - 1);
+      const Rgb c = test::pixel(image, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py));
       if (test::is_saturated(c) && dominant_channel(c) == dominant_channel(colour)) return true;
     }
   return false;
@@ -170,7 +177,7 @@ TEST(EmbedExample, GpuBackendDrawsTheIndicatorsTheSimulationPredicts) {
     const glm::vec3 direction = (indicator.position - camera.eye) / distance;
     if (closest_hit(world.bvh, camera.eye, direction, 0.0f, distance - 0.05f).triangle != SP_INVALID) continue;
     ++checked;
-    const glm::vec3 colour = world.sources[indicator.source_id].color;
+    const glm::vec3 colour = world.source_colors[indicator.source_id];
     if (shows_colour(*picture, p.x, p.y, colour)) {
       ++shown;
       EXPECT_FALSE(shows_colour(*bare, p.x, p.y, colour));

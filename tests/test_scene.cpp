@@ -212,7 +212,9 @@ TEST_F(SceneFile, ReadsSourcesAndFirstCameraInTraversalOrder) {
   const sp::SourceDesc& c1 = scene.sources[1];
   EXPECT_EQ(c1.name, "C1");
   expect_vec3(c1.position, {1, 2, 4}, "C1 position");
-  expect_vec3(c1.color, {1, 0, 0.5f}, "C1 color");
+  ASSERT_TRUE(c1.color.has_value());
+  expect_vec3(*c1.color, {1, 0, 0.5f}, "C1 color");
+  EXPECT_FALSE(r1.color.has_value()) << "without a color, the category's palette colour";
   EXPECT_EQ(c1.category, "voice");
   EXPECT_FLOAT_EQ(c1.max_distance, 12.0f);
   EXPECT_FLOAT_EQ(c1.loudness, 0.5f);

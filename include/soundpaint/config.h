@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "soundpaint/display.h"
 #include "soundpaint/result.h"
 
 namespace sp {
@@ -31,7 +32,9 @@ struct LayerProperties {
 struct SourceDesc {
   std::string name;                    // node name for scene sources, "" otherwise
   glm::vec3 position{0.0f};            // metres, world space
-  glm::vec3 color{1.0f, 1.0f, 1.0f};   // linear RGB, each in [0, 1]
+  // Linear RGB, each in [0, 1]; empty: its category's colour in the
+  // display palette (SPEC 1.4, include/soundpaint/display.h).
+  std::optional<glm::vec3> color;
   std::string category = "sound";      // free text, e.g. "footsteps"
   float max_distance = 30.0f;          // D_max == R_max, metres, >= 0
   float loudness = 1.0f;               // E0, initial ray energy, >= 0
@@ -60,6 +63,7 @@ struct Config {
   std::map<std::string, LayerProperties> layers;  // overrides of presets, by layer name
   std::optional<glm::vec3> listener_position;     // overrides the scene's camera
   std::vector<SourceDesc> sources;                // added after the scene's sources
+  DisplaySettings display;                        // how indicators are drawn (SPEC 1.5)
 };
 
 // Largest accepted values (inclusive); larger values are configuration errors.

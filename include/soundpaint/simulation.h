@@ -32,6 +32,13 @@ struct World {
   std::vector<LayerProperties> layer_properties;  // per layer id
   std::vector<std::uint32_t> layer_triangle_counts;
   std::vector<SourceDesc> sources;                // source id == index
+  // Per source id: its category's index in category_names (built-in
+  // categories first, then others in order of first appearance), and the
+  // colour its indicators carry: its own, else its category's palette
+  // colour. Kept up to date by make_world and SoundScene.
+  std::vector<std::uint32_t> source_categories;
+  std::vector<glm::vec3> source_colors;
+  std::vector<std::string> category_names;
   // Per source id: false once removed (SoundScene::remove_source); the slot
   // keeps its last description and a later add_source may reuse it.
   std::vector<bool> source_active;
@@ -120,6 +127,12 @@ class SoundScene {
   // from the next step on, then removes itself. Its pattern fields are
   // ignored. Returns its id (valid until it ends).
   Result<std::uint32_t> emit(const SourceDesc& source, double duration);
+
+  // How indicators are drawn (the config's `display`): checked, then kept in
+  // world().config.display. Sources without a colour of their own take
+  // their category's colour in the new palette from the next step on.
+  // Errors: InvalidConfig naming the key.
+  Result<bool> set_display(const DisplaySettings& settings);
 
   // Places moving part `instance` (Scene::instance_names) at `transform`
   // applied to its rest pose (the vertices the scene gave): a door swings by

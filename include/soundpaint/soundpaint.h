@@ -108,6 +108,8 @@ typedef struct sp_indicator {
   uint32_t penetrations; /* completed penetrations before this indicator */
   float path_length;   /* metres travelled by the ray from its source */
   uint32_t step;       /* the step that created it */
+  float direction[3];  /* unit; the ray's direction of travel: incoming (hit), outgoing (exit) */
+  uint32_t diffractions; /* times the ray turned at an edge before this indicator */
 } sp_indicator;
 
 /* Totals over every step run so far. */
@@ -124,7 +126,8 @@ typedef struct sp_stats {
  * that bindings then need not know. */
 typedef struct sp_source_desc {
   float position[3];    /* metres, world space, finite; default 0, 0, 0 */
-  float color[3];       /* linear RGB, each in [0, 1]; default 1, 1, 1 */
+  float color[3];       /* linear RGB, each in [0, 1]; or all three negative (the default, -1):
+                           the colour of its category in the display palette */
   const char* category; /* UTF-8 free text, copied; NULL: "sound" (the default) */
   float max_distance;   /* metres a ray travels (and listener range), >= 0; default 30 */
   float loudness;       /* E0, initial ray energy, >= 0; default 1 */
@@ -140,8 +143,9 @@ typedef struct sp_source_desc {
  * A successful call does not clear it. Thread-safe (thread-local). */
 const char* sp_last_error_message(void) SP_NOEXCEPT;
 
-/* Fills *desc with the library's defaults (see sp_source_desc): a white
- * source at the origin that plays always. NULL is a no-op. Thread-safe. */
+/* Fills *desc with the library's defaults (see sp_source_desc): a source at
+ * the origin, in its category's palette colour, that plays always. NULL is
+ * a no-op. Thread-safe. */
 void sp_source_desc_init(sp_source_desc* desc) SP_NOEXCEPT;
 
 /* Loads a .gltf or .glb scene. path: non-NULL, UTF-8, NUL-terminated.

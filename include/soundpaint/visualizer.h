@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include <glm/mat4x4.hpp>
 #include <vulkan/vulkan.h>
@@ -64,6 +65,24 @@ struct VisualizerSettings {
   std::uint32_t max_steps_per_frame = 4;
 };
 
+// What record_draw needs beyond the host's matrices.
+struct DrawOptions {
+  // Sets viewport and scissor to it; null: those already set in the
+  // command buffer are used.
+  const VkRect2D* area = nullptr;
+  // The viewport's size in pixels (area's extent when area is given). With
+  // it spots are never drawn smaller than their shapes need, and
+  // off-screen arrows can be placed; 0 x 0 does without both.
+  std::uint32_t viewport_width = 0;
+  std::uint32_t viewport_height = 0;
+  // Index of a view registered with set_scene_depth(): spots are then
+  // clipped to the surface they lie on. That depth image must be in
+  // VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL (or DEPTH_STENCIL_READ_ONLY)
+  // during the draw, e.g. as the rendering's read-only depth attachment.
+  // Negative: no clipping.
+  std::int32_t scene_depth = -1;
+};
+
 class Visualizer {
  public:
   // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
@@ -105,6 +124,25 @@ class Visualizer {
   // the host's own draws use them (Vulkan clip space).
   virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
                                    const VkRect2D* area = nullptr) = 0;
+  // The same with the display's options: clipping to surfaces (scene depth)
+  // and the viewport size the minimum spot size and off-screen arrows need.
+  // Off-screen arrows are drawn when the display settings ask for them.
+  virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+                                   const DrawOptions& options) = 0;
+
+  // How the indicators are drawn (SPEC 1.5; initially the world's
+  // config.display). Checked (InvalidConfig naming the key); applies from
+  // the next record_simulation. The palette colours sources without their
+  // own colour from their next indicators on.
+  virtual Result<bool> set_display(const DisplaySettings& settings) = 0;
+  virtual const DisplaySettings& display() const = 0;
+
+  // Registers the depth image views record_draw may clip against (e.g. one
+  // per swapchain image), replacing earlier ones; DrawOptions::scene_depth
+  // indexes them. Depth aspect, single-sample (resolve a multisampled depth
+  // first). At most 8. Only when no recorded draw is pending (after the
+  // host's vkDeviceWaitIdle when it recreates its swapchain, say).
+  virtual Result<bool> set_scene_depth(std::span<const VkImageView> views) = 0;
 
   // Blocks until the CPU backend's step in progress (if any) is finished and
   // handed over by the next record_simulation. For loading screens,

@@ -55,15 +55,97 @@ struct ScenePush {
   float fog_distance;  // metres at which distant surfaces have faded 63% into the clear colour; 0: no fog
 };
 
-// Push constants of the indicator pass, 96 bytes.
+// IndicatorPush.flags: what the display settings (include/soundpaint/
+// display.h) turn on.
+#define SP_DRAW_DIRECTION 1u  // elongate each spot along its ray's direction
+#define SP_DRAW_OUTLINE 2u    // the two-tone halo
+#define SP_DRAW_CLIP 4u       // clip spots to their surface with the scene's depth (set 1)
+#define SP_DRAW_CAPS 8u       // max_per_category: draw only slots the prepass marked
+
+// Bindings of the indicator pass's descriptor set.
+#define SP_DRAW_BINDING_RING 0
+#define SP_DRAW_BINDING_SOURCES 1       // DisplaySource per source id
+#define SP_DRAW_BINDING_SOURCE_LIVE 2   // per source id: live spots (the prepass)
+#define SP_DRAW_BINDING_CATEGORIES 3    // per category: cap histogram and decision (the prepass)
+#define SP_DRAW_BINDING_VISIBLE 4       // per ring slot: 1 when drawn under the caps (the prepass)
+#define SP_DRAW_BINDING_DRAW_ARGS 5     // the ring's VkDrawIndirectCommand (instance count = filled slots)
+#define SP_DRAW_BINDING_COUNT 6
+
+// The halo's two rings, linear RGB: dark against the spot, light outside
+// it. Against any surface one of them keeps at least sqrt(21) = 4.6:1
+// (WCAG contrast; src/display/contrast.h derives it and checks these).
+#define SP_HALO_DARK_RGB 0.0f, 0.0f, 0.0f
+#define SP_HALO_LIGHT_RGB 1.0f, 1.0f, 1.0f
+
+// DisplaySource.shape_flags: the shape (SP_SHAPE_*) in the low byte, then:
+#define SP_SOURCE_HIDDEN 0x100u   // its category is in hide_categories
+#define SP_SOURCE_PRESENT 0x200u  // a source with this id exists
+
+// Per category in the categories buffer: a histogram of live spots by
+// energy relative to their source (SP_CAP_BINS bins), then the lowest bin
+// drawn whole, how many of the bin below it may still be drawn, and how
+// many of those the prepass has taken.
+#define SP_CAP_BINS 64u
+#define SP_CATEGORY_STRIDE (SP_CAP_BINS + 3u)
+
+// The prepass's phases (DisplayPrepassPush.phase).
+#define SP_PREPASS_CLEAR 0u
+#define SP_PREPASS_COUNT 1u
+#define SP_PREPASS_THRESHOLD 2u
+#define SP_PREPASS_MARK 3u
+
+// A spot fades in over SP_FADE_IN_SECONDS, so it never pops on, and out
+// over the rest of its display lifetime (sp_ring.h SP_MIN_DISPLAY_LIFETIME).
+#define SP_FADE_IN_SECONDS 0.1f
+
+// One source as the display sees it, 32 bytes.
+struct DisplaySource {
+  vec3 position;
+  uint category;     // index in the world's category table
+  vec3 color;        // linear RGB: its own colour, else its category's palette colour
+  uint shape_flags;  // SP_SHAPE_* | SP_SOURCE_*
+};
+
+// Push constants of the indicator pass, 128 bytes (Vulkan's guaranteed
+// minimum of maxPushConstantsSize).
 struct IndicatorPush {
   mat4 view_proj;      // world -> Vulkan clip space
   vec3 eye;            // camera position: indicators facing away from it are skipped
   uint current_step;   // the step the picture shows (the last one run)
   float dt;            // seconds per step
-  float lifetime;      // indicator_lifetime, seconds (> 0)
+  float lifetime;      // the display's lifetime: max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME), seconds
+  float pixel_scale;   // pixels per metre at 1 m in front of the eye: projection[1][1] * viewport height / 2
+  float min_pixels;    // the smallest diameter a spot is drawn at, pixels
+  float size_scale;    // display.size_scale
+  float opacity_scale; // display.opacity_scale
+  float min_opacity;   // display.min_opacity
+  uint flags;          // SP_DRAW_*
+  float depth_a;       // the projection's depth terms, projection[2][2] and [3][2]:
+  float depth_b;       //   view distance = depth_b / (depth + depth_a) for a perspective projection
+  float inv_indicator_size;  // 1 / indicator_size: size * this = E / E0
   uint pad0;
-  uint pad1;
+};
+
+// Push constants of the display prepass (display_prepass.comp), 32 bytes.
+struct DisplayPrepassPush {
+  uint phase;           // SP_PREPASS_*
+  uint current_step;
+  float dt;
+  float lifetime;       // the display's lifetime, as IndicatorPush.lifetime
+  uint category_count;  // categories in the categories buffer
+  uint max_per_category;
+  uint ring_capacity;
+  float inv_indicator_size;
+};
+
+// Push constants of the off-screen arrows, 96 bytes.
+struct ArrowPush {
+  mat4 view_proj;
+  vec2 viewport;       // pixels
+  float arrow_pixels;  // an arrow's length, pixels
+  uint source_count;   // entries of the source table in use
+  vec3 eye;
+  uint pad0;
 };
 
 SP_END_NAMESPACE

@@ -29,7 +29,9 @@ bool finite(float x, float y, float z) { return std::isfinite(x) && std::isfinit
 sp::SourceDesc to_cpp(const sp_source_desc& in) {
   sp::SourceDesc out;
   out.position = glm::vec3(in.position[0], in.position[1], in.position[2]);
-  out.color = glm::vec3(in.color[0], in.color[1], in.color[2]);
+  // All three negative: no colour of its own (the palette's).
+  if (!(in.color[0] < 0.0f && in.color[1] < 0.0f && in.color[2] < 0.0f))
+    out.color = glm::vec3(in.color[0], in.color[1], in.color[2]);
   if (in.category != nullptr) out.category = in.category;
   out.max_distance = in.max_distance;
   out.loudness = in.loudness;
@@ -54,7 +56,7 @@ void sp_source_desc_init(sp_source_desc* desc) noexcept {
   sp_source_desc out{};
   for (int k = 0; k < 3; ++k) {
     out.position[k] = defaults.position[k];
-    out.color[k] = defaults.color[k];
+    out.color[k] = -1.0f;  // defaults.color is empty: the category's palette colour
   }
   out.category = nullptr;  // stands for defaults.category
   out.max_distance = defaults.max_distance;

@@ -40,6 +40,10 @@ sp_indicator to_c(const sp::Indicator& in) {
   out.penetrations = in.penetrations;
   out.path_length = in.path_length;
   out.step = in.step;
+  out.direction[0] = in.dir.x;
+  out.direction[1] = in.dir.y;
+  out.direction[2] = in.dir.z;
+  out.diffractions = in.diffractions;
   return out;
 }
 

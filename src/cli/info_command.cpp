@@ -53,7 +53,8 @@ int run_info(const std::vector<std::string>& args) {
     std::printf("  %2zu %-16s %-12s at ", id, s.name.empty() ? "-" : s.name.c_str(), s.category.c_str());
     print_vec(s.position);
     std::printf(" color ");
-    print_vec(s.color);
+    print_vec(world.source_colors[id]);
+    if (!s.color) std::printf(" (palette)");
     std::printf(" max_distance %.1f m, every %.3f s for %.3f s\n", double(s.max_distance), s.interval, s.duration);
   }
   std::printf("listener: ");

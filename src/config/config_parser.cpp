@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/display_json.h"
 #include "config/json_fields.h"
 #include "config/layer_names.h"
 #include "config/source_json.h"
@@ -130,6 +131,7 @@ constexpr KeyReader kKeyReaders[] = {
     {"layers", read_layers},
     {"listener", read_listener},
     {"sources", read_sources},
+    {"display", [](const json& v, const JsonPath& at, Config& c) { read_display(v, at, c.display); }},
 };
 
 Config read_config(const json& root, std::string_view origin) {

@@ -19,11 +19,13 @@
 
 #include <glm/vec3.hpp>
 
+#include "sp_draw_types.h"
+
 namespace sp {
 
-// Linear RGB, for the shaders to copy.
-inline constexpr glm::vec3 kHaloDark(0.0f, 0.0f, 0.0f);
-inline constexpr glm::vec3 kHaloLight(1.0f, 1.0f, 1.0f);
+// Linear RGB, the colours the indicator shader draws (sp_draw_types.h).
+inline constexpr glm::vec3 kHaloDark(SP_HALO_DARK_RGB);
+inline constexpr glm::vec3 kHaloLight(SP_HALO_LIGHT_RGB);
 
 // WCAG 2.x relative luminance of a linear RGB colour (Rec. 709 weights), in [0, 1].
 float relative_luminance(glm::vec3 linear_rgb);

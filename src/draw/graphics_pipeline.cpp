@@ -31,8 +31,9 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
                                        desc.push_constant_bytes};
   VkPipelineLayoutCreateInfo layout_info{};
   layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  layout_info.setLayoutCount = 1;
-  layout_info.pSetLayouts = &desc.set_layout;
+  const VkDescriptorSetLayout set_layouts[2] = {desc.set_layout, desc.set_layout_1};
+  layout_info.setLayoutCount = desc.set_layout_1 != VK_NULL_HANDLE ? 2 : 1;
+  layout_info.pSetLayouts = set_layouts;
   layout_info.pushConstantRangeCount = desc.push_constant_bytes > 0 ? 1 : 0;
   layout_info.pPushConstantRanges = &push_range;
   VkPipelineLayout raw_layout = VK_NULL_HANDLE;
@@ -75,7 +76,7 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   VkPipelineDepthStencilStateCreateInfo depth{};
   depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
   const bool has_depth = desc.depth_format != VK_FORMAT_UNDEFINED;
-  depth.depthTestEnable = has_depth ? VK_TRUE : VK_FALSE;
+  depth.depthTestEnable = has_depth && desc.depth_test ? VK_TRUE : VK_FALSE;
   depth.depthWriteEnable = has_depth && desc.depth_write ? VK_TRUE : VK_FALSE;
   // OR_EQUAL: a lifted indicator exactly level with a surface still shows.
   depth.depthCompareOp = desc.depth_compare;

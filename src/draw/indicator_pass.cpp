@@ -1,21 +1,38 @@
 #include "draw/indicator_pass.h"
 
+#include <algorithm>
+#include <string>
+
+#include "arrow.frag.spv.h"
+#include "arrow.vert.spv.h"
+#include "display/categories.h"
+#include "display_prepass.comp.spv.h"
 #include "draw/draw_layout_checks.h"
 #include "indicator.frag.spv.h"
 #include "indicator.vert.spv.h"
+#include "indicator_clip.frag.spv.h"
 #include "soundpaint/result.h"
+#include "sp_shapes.h"
+#include "vk/barriers.h"
 
 namespace sp::draw {
+namespace {
 
-IndicatorPass::IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format)
-    : IndicatorPass(context, DrawTarget{color_format, depth_format}) {}
+constexpr VkBufferUsageFlags kTable = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+// Scene depth views a pass can sample: a swapchain's depth images, or one.
+constexpr std::uint32_t kSceneDepthCapacity = 8;
+// An off-screen arrow's length on screen: large enough for its shape to
+// stay above the shapes' minimum size (SP_SHAPE_MIN_PIXELS).
+constexpr float kArrowPixels = 44.0f;
+constexpr std::uint32_t kPrepassGroup = 64;
 
-IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& target)
-    : device_(context.device()), bindings_(context, 1, "indicator pass bindings") {
+std::uint32_t groups(std::uint32_t threads) { return (threads + kPrepassGroup - 1) / kPrepassGroup; }
+
+GraphicsPipelineDesc indicator_desc(const DrawTarget& target, VkDescriptorSetLayout set) {
   GraphicsPipelineDesc desc;
   desc.vertex_spirv = sp_spirv_indicator_vert;
   desc.fragment_spirv = sp_spirv_indicator_frag;
-  desc.set_layout = bindings_.layout();
+  desc.set_layout = set;
   desc.push_constant_bytes = sizeof(shader::IndicatorPush);
   desc.color_format = target.color_format;
   desc.depth_format = target.depth_format;
@@ -27,44 +44,159 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
   desc.blend = Blend::Alpha;
   desc.depth_write = false;
   desc.name = "indicator pass";
+  return desc;
+}
+
+}  // namespace
+
+IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& target, std::uint32_t source_capacity)
+    : context_(&context),
+      source_capacity_(std::max(source_capacity, 1u)),
+      category_capacity_(source_capacity_ + kBuiltinCategoryCount),
+      bindings_(context, SP_DRAW_BINDING_COUNT, "indicator pass bindings"),
+      depth_sets_(context, kSceneDepthCapacity),
+      sources_(context, sizeof(shader::DisplaySource) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
+               "display sources"),
+      source_live_(context, sizeof(std::uint32_t) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
+                   "display source live counts"),
+      categories_(context, sizeof(std::uint32_t) * SP_CATEGORY_STRIDE * category_capacity_, kTable,
+                  vk::MemoryUsage::DeviceLocal, "display category caps") {
+  bindings_.bind(context, SP_DRAW_BINDING_SOURCES, sources_);
+  bindings_.bind(context, SP_DRAW_BINDING_SOURCE_LIVE, source_live_);
+  bindings_.bind(context, SP_DRAW_BINDING_CATEGORIES, categories_);
+  ensure_visible_capacity(1);
+
+  GraphicsPipelineDesc desc = indicator_desc(target, bindings_.layout());
   pipeline_ = GraphicsPipeline(context, desc);
+  desc.fragment_spirv = sp_spirv_indicator_clip_frag;
+  desc.set_layout_1 = depth_sets_.layout();
+  desc.name = "indicator pass, clipped";
+  clip_pipeline_ = GraphicsPipeline(context, desc);
+
+  GraphicsPipelineDesc arrows = indicator_desc(target, bindings_.layout());
+  arrows.vertex_spirv = sp_spirv_arrow_vert;
+  arrows.fragment_spirv = sp_spirv_arrow_frag;
+  arrows.push_constant_bytes = sizeof(shader::ArrowPush);
+  arrows.depth_test = false;  // an overlay at the screen's edge
+  arrows.name = "off-screen arrows";
+  arrows_ = GraphicsPipeline(context, arrows);
+
+  prepass_ = vk::ComputePipeline(context, sp_spirv_display_prepass_comp, bindings_.layout(),
+                                 sizeof(shader::DisplayPrepassPush), "display prepass");
+}
+
+void IndicatorPass::ensure_visible_capacity(std::uint32_t slots) {
+  if (slots <= ring_capacity_ && visible_.get() != VK_NULL_HANDLE) return;
+  ring_capacity_ = std::max(slots, 1u);
+  visible_ = vk::Buffer(*context_, sizeof(std::uint32_t) * ring_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
+                        "display visible slots");
+  bindings_.bind(*context_, SP_DRAW_BINDING_VISIBLE, visible_);
 }
 
 void IndicatorPass::bind(const gpu::IndicatorView& indicators) {
   if (indicators.ring == VK_NULL_HANDLE || indicators.draw_args == VK_NULL_HANDLE)
     throw Exception(ErrorCode::InvalidArgument, "indicator pass: the indicator view has no ring or draw arguments");
-  // The view holds a raw VkBuffer (the simulator owns it), which
-  // StorageBindings::bind does not take; the write is the same.
-  const VkDescriptorBufferInfo info{indicators.ring, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet write{};
-  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  write.dstSet = bindings_.set();
-  write.dstBinding = 0;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  write.pBufferInfo = &info;
-  vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+  ensure_visible_capacity(indicators.ring_capacity);
+  bindings_.bind(*context_, SP_DRAW_BINDING_RING, indicators.ring);
+  bindings_.bind(*context_, SP_DRAW_BINDING_DRAW_ARGS, indicators.draw_args, indicators.draw_args_offset,
+                 sizeof(VkDrawIndirectCommand));
+  bound_draw_args_ = indicators.draw_args;
+  bound_draw_args_offset_ = indicators.draw_args_offset;
 }
 
-void IndicatorPass::record(VkCommandBuffer cmd, const ViewCamera& camera, const gpu::IndicatorView& indicators,
-                           const IndicatorClock& clock) const {
-  record(cmd, camera.view_projection(), camera.eye, indicators, clock);
-}
+void IndicatorPass::record_prepare(VkCommandBuffer cmd, std::span<const shader::DisplaySource> sources,
+                                   const DisplayFrame& frame, bool graphics_queue) {
+  if (sources.size() > source_capacity_)
+    throw Exception(ErrorCode::LimitExceeded, "indicator pass: " + std::to_string(sources.size()) +
+                                                  " sources, more than the " + std::to_string(source_capacity_) +
+                                                  " it was made for");
+  const VkPipelineStageFlags2 draw_stages = graphics_queue ? VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT : 0;
+  // WAR: earlier frames' draws and prepasses are done with the tables; RAW:
+  // the ring's writes (the step's kernels, or the host's upload) reach the
+  // prepass.
+  vk::memory_barrier(cmd, draw_stages | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  if (!sources.empty()) vk::record_update(cmd, sources_, 0, sources.data(), sources.size_bytes());
+  // RAW: the table reaches the prepass and the draw.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | draw_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 
-void IndicatorPass::record(VkCommandBuffer cmd, const glm::mat4& view_projection, glm::vec3 eye,
-                           const gpu::IndicatorView& indicators, const IndicatorClock& clock) const {
-  shader::IndicatorPush push{};
-  push.view_proj = view_projection;
-  push.eye = eye;
-  push.current_step = clock.current_step;
-  push.dt = clock.dt;
-  push.lifetime = clock.lifetime;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+  const bool caps = frame.settings.max_per_category.has_value();
+  shader::DisplayPrepassPush push{};
+  push.current_step = frame.current_step;
+  push.dt = frame.dt;
+  push.lifetime = frame.lifetime;
+  push.category_count = std::min(frame.category_count, category_capacity_);
+  push.max_per_category = caps ? *frame.settings.max_per_category : 0xFFFFFFFFu;
+  push.ring_capacity = ring_capacity_;
+  push.inv_indicator_size = frame.inv_indicator_size;
   const VkDescriptorSet set = bindings_.set();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout(), 0, 1, &set, 0, nullptr);
-  vkCmdPushConstants(cmd, pipeline_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push,
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prepass_.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prepass_.layout(), 0, 1, &set, 0, nullptr);
+  auto phase = [&](std::uint32_t which, std::uint32_t threads) {
+    push.phase = which;
+    vkCmdPushConstants(cmd, prepass_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    vkCmdDispatch(cmd, groups(threads), 1, 1);
+    vk::compute_to_compute(cmd);  // each phase reads what the one before wrote
+  };
+  phase(SP_PREPASS_CLEAR, std::max(source_capacity_, push.category_count * SP_CATEGORY_STRIDE));
+  phase(SP_PREPASS_COUNT, ring_capacity_);
+  if (caps) {
+    phase(SP_PREPASS_THRESHOLD, push.category_count);
+    phase(SP_PREPASS_MARK, ring_capacity_);
+  }
+  // RAW: counts and marks reach the draw's vertex shaders.
+  if (graphics_queue)
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+void IndicatorPass::record(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame,
+                           VkDescriptorSet scene_depth) const {
+  shader::IndicatorPush push{};
+  push.view_proj = view.view_projection;
+  push.eye = view.eye;
+  push.current_step = frame.current_step;
+  push.dt = frame.dt;
+  push.lifetime = frame.lifetime;
+  push.pixel_scale = view.pixel_scale;
+  push.min_pixels = SP_SHAPE_MIN_PIXELS;
+  push.size_scale = frame.settings.size_scale;
+  push.opacity_scale = frame.settings.opacity_scale;
+  push.min_opacity = frame.settings.min_opacity;
+  push.flags = (frame.settings.direction ? SP_DRAW_DIRECTION : 0u) | (frame.settings.outline ? SP_DRAW_OUTLINE : 0u) |
+               (scene_depth != VK_NULL_HANDLE ? SP_DRAW_CLIP : 0u) |
+               (frame.settings.max_per_category ? SP_DRAW_CAPS : 0u);
+  push.depth_a = view.depth_a;
+  push.depth_b = view.depth_b;
+  push.inv_indicator_size = frame.inv_indicator_size;
+  const GraphicsPipeline& pipeline = scene_depth != VK_NULL_HANDLE ? clip_pipeline_ : pipeline_;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.get());
+  const VkDescriptorSet sets[2] = {bindings_.set(), scene_depth};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0,
+                          scene_depth != VK_NULL_HANDLE ? 2 : 1, sets, 0, nullptr);
+  vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push,
                      &push);
-  vkCmdDrawIndirect(cmd, indicators.draw_args, indicators.draw_args_offset, 1, sizeof(VkDrawIndirectCommand));
+  vkCmdDrawIndirect(cmd, bound_draw_args_, bound_draw_args_offset_, 1, sizeof(VkDrawIndirectCommand));
+}
+
+void IndicatorPass::record_arrows(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame) const {
+  if (!frame.offscreen_arrows || frame.source_count == 0) return;
+  shader::ArrowPush push{};
+  push.view_proj = view.view_projection;
+  push.viewport = view.viewport;
+  push.arrow_pixels = kArrowPixels;
+  push.source_count = std::min(frame.source_count, source_capacity_);
+  push.eye = view.eye;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.get());
+  const VkDescriptorSet set = bindings_.set();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.layout(), 0, 1, &set, 0, nullptr);
+  vkCmdPushConstants(cmd, arrows_.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push,
+                     &push);
+  vkCmdDraw(cmd, SP_INDICATOR_QUAD_VERTICES, push.source_count, 0, 0);
 }
 
 }  // namespace sp::draw

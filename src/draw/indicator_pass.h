@@ -1,54 +1,80 @@
-// The indicator pass: every ring slot as a soft round quad on its surface,
-// drawn with vkCmdDrawIndirect from a VkDrawIndirectCommand whose instance
-// count the simulation wrote -- no vertex buffers, no read-back. Expired
-// slots collapse in the vertex shader.
+// The indicator pass: every ring slot drawn as its category's shape on its
+// surface, elongated along its sound's direction, with a halo, clipped to
+// its surface when the scene's depth is given; off-screen arrows for the
+// sources heard but out of view. Drawn with vkCmdDrawIndirect from the
+// VkDrawIndirectCommand the simulation wrote: no vertex buffers, no
+// read-back. docs/accessibility.md says what each part is for.
+//
+// Per frame, outside any rendering: record_prepare() (the source table and
+// the prepass that counts live spots per source and applies the caps);
+// inside the rendering: record() and record_arrows().
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
+#include "draw/display_frame.h"
 #include "draw/graphics_pipeline.h"
-#include "draw/view_camera.h"
+#include "draw/scene_depth_sets.h"
 #include "gpu/gpu_simulator.h"
 #include "soundpaint/visualizer.h"
+#include "sp_draw_types.h"
+#include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 #include "vk/context.h"
 
 namespace sp::draw {
 
-// The step a picture shows and how indicators age (SPEC 1.4).
-struct IndicatorClock {
-  std::uint32_t current_step = 0;  // the last step run; age = (current_step - birth step) * dt
-  float dt = 1.0f / 60.0f;         // seconds per step
-  float lifetime = 1.0f;           // indicator_lifetime, seconds (> 0)
-};
-
 class IndicatorPass {
  public:
-  // Throws sp::Exception.
-  IndicatorPass(const vk::Context& context, VkFormat color_format, VkFormat depth_format);
-  // Into a host's rendering with the attachments `target` describes.
-  IndicatorPass(const vk::Context& context, const DrawTarget& target);
+  // Draws into renderings with the attachments `target` describes, for
+  // worlds of up to `source_capacity` sources. Throws sp::Exception.
+  IndicatorPass(const vk::Context& context, const DrawTarget& target, std::uint32_t source_capacity);
 
-  // Points the pass at `indicators`' ring. Call before recording each frame
-  // that draws them, and never while a frame using the pass is pending (a
-  // ring may have been replaced since, even under the same handle value).
+  // Points the pass at `indicators`' ring and draw arguments. Not while a
+  // frame using the pass is pending.
   void bind(const gpu::IndicatorView& indicators);
 
-  // Records the indirect draw inside an active rendering scope. The caller
-  // has made the ring and draw arguments visible to the vertex-shader and
-  // draw-indirect stages.
-  void record(VkCommandBuffer cmd, const ViewCamera& camera, const gpu::IndicatorView& indicators,
-              const IndicatorClock& clock) const;
-  // The same with the host's matrices; `eye` is the camera position.
-  void record(VkCommandBuffer cmd, const glm::mat4& view_projection, glm::vec3 eye,
-              const gpu::IndicatorView& indicators, const IndicatorClock& clock) const;
+  // Outside rendering: uploads `sources` (make_display_sources) and runs the
+  // prepass over the bound ring, then makes both visible to the draw (on a
+  // compute-only queue, `graphics_queue` false, the host's semaphore does
+  // that). Earlier writes of the ring are made visible here.
+  void record_prepare(VkCommandBuffer cmd, std::span<const shader::DisplaySource> sources, const DisplayFrame& frame,
+                      bool graphics_queue = true);
+
+  // Inside an active rendering: the spots. `scene_depth` (from
+  // scene_depths()) clips them to their surfaces; VK_NULL_HANDLE does not.
+  void record(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame,
+              VkDescriptorSet scene_depth = VK_NULL_HANDLE) const;
+  // Inside an active rendering: an arrow at the screen's edge for each
+  // source heard but out of view.
+  void record_arrows(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame) const;
+
+  // Descriptor sets that sample depth images for record().
+  SceneDepthSets& scene_depths() { return depth_sets_; }
 
  private:
-  VkDevice device_ = VK_NULL_HANDLE;
+  void ensure_visible_capacity(std::uint32_t slots);
+
+  const vk::Context* context_ = nullptr;
+  std::uint32_t source_capacity_ = 0;
+  std::uint32_t category_capacity_ = 0;
+  std::uint32_t ring_capacity_ = 0;
+  VkBuffer bound_draw_args_ = VK_NULL_HANDLE;  // the bound ring's VkDrawIndirectCommand
+  VkDeviceSize bound_draw_args_offset_ = 0;
   vk::StorageBindings bindings_;
-  GraphicsPipeline pipeline_;
+  SceneDepthSets depth_sets_;
+  vk::Buffer sources_;      // DisplaySource per source id
+  vk::Buffer source_live_;  // per source id
+  vk::Buffer categories_;   // SP_CATEGORY_STRIDE per category
+  vk::Buffer visible_;      // per ring slot
+  GraphicsPipeline pipeline_;       // without clipping
+  GraphicsPipeline clip_pipeline_;  // with the scene's depth, set 1
+  GraphicsPipeline arrows_;
+  vk::ComputePipeline prepass_;
 };
 
 }  // namespace sp::draw

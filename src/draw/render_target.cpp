@@ -10,6 +10,39 @@
 #include "vk/vk_check.h"
 
 namespace sp::draw {
+namespace {
+
+// How a pass uses one attachment.
+struct AttachmentUse {
+  VkImageView view;
+  VkImageLayout layout;
+  VkAttachmentLoadOp load;
+  VkAttachmentStoreOp store;
+};
+
+VkRenderingAttachmentInfo attachment(const AttachmentUse& use) {
+  VkRenderingAttachmentInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  info.imageView = use.view;
+  info.imageLayout = use.layout;
+  info.loadOp = use.load;
+  info.storeOp = use.store;
+  return info;
+}
+
+void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo& color,
+                     const VkRenderingAttachmentInfo& depth) {
+  VkRenderingInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  rendering.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &rendering);
+}
+
+}  // namespace
 
 DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::uint32_t height, VkFormat format,
                          VkImageUsageFlags usage, VkImageAspectFlags aspect, const char* name) {
@@ -67,8 +100,9 @@ RenderTarget::RenderTarget(const vk::Context& context, std::uint32_t width, std:
   output_ = DeviceImage(context, width, height, kOutputFormat,
                         VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
                         "render output");
-  depth_ = DeviceImage(context, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                       VK_IMAGE_ASPECT_DEPTH_BIT, "render depth");
+  depth_ = DeviceImage(context, width, height, kDepthFormat,
+                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                       "render depth");
   readback_ = vk::Buffer(context, VkDeviceSize{width} * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          vk::MemoryUsage::Readback, "render readback");
 }
@@ -87,28 +121,14 @@ void RenderTarget::begin(VkCommandBuffer cmd, const float (&clear)[4]) const {
                 depth_stages,
                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
-  VkRenderingAttachmentInfo color{};
-  color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-  color.imageView = color_.view();
-  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo color = attachment({color_.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                                VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE});
   std::memcpy(color.clearValue.color.float32, clear, sizeof clear);
-  VkRenderingAttachmentInfo depth{};
-  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-  depth.imageView = depth_.view();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // depth is not needed after the frame
+  // Depth is kept for the overlays (begin_overlays), which test against it.
+  VkRenderingAttachmentInfo depth = attachment({depth_.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                                VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE});
   depth.clearValue.depthStencil = {1.0f, 0};
-  VkRenderingInfo rendering{};
-  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
-  rendering.renderArea = {{0, 0}, {width_, height_}};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &color;
-  rendering.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &rendering);
+  begin_rendering(cmd, {width_, height_}, color, depth);
 
   const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width_), static_cast<float>(height_), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, {width_, height_}};
@@ -156,6 +176,22 @@ void RenderTarget::end_and_copy(VkCommandBuffer cmd) const {
   // the fence; the fence alone would not make them visible.
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
+}
+
+void RenderTarget::begin_overlays(VkCommandBuffer cmd) const {
+  vkCmdEndRendering(cmd);
+  // RAW: the scene's depth writes land before the overlays test and sample it.
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  image_barrier(cmd, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  begin_rendering(cmd, {width_, height_},
+                  attachment({color_.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD,
+                              VK_ATTACHMENT_STORE_OP_STORE}),
+                  attachment({depth_.view(), VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD,
+                              VK_ATTACHMENT_STORE_OP_NONE}));
 }
 
 RgbaImage RenderTarget::read() const {

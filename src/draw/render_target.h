@@ -63,6 +63,12 @@ class RenderTarget {
   // Transitions both images for drawing (their old contents are discarded)
   // and begins dynamic rendering with them cleared to `clear` and depth 1.
   void begin(VkCommandBuffer cmd, const float (&clear)[4]) const;
+  // Ends the scene's rendering and begins the overlays': colour kept, depth
+  // kept and read-only (VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL), so that
+  // the indicator pass can both test against it and sample depth_view().
+  void begin_overlays(VkCommandBuffer cmd) const;
+  // The depth image's view, for sampling while the overlays are drawn.
+  VkImageView depth_view() const { return depth_.view(); }
   // Ends rendering, converts the colour image to kOutputFormat and copies it
   // into the readback buffer, visible to the host once the submission's
   // fence has signalled.

@@ -1,5 +1,9 @@
 #include "draw/renderer.h"
 
+#include <algorithm>
+
+#include "draw/display_sources.h"
+
 #include "vk/barriers.h"
 #include "vk/vk_check.h"
 
@@ -11,7 +15,9 @@ Renderer::Renderer(vk::Context& context, const World& world, const RenderSetting
       target_(context, settings.width, settings.height),
       scene_(context, build_scene_mesh(world, settings.markers), RenderTarget::kColorFormat,
              RenderTarget::kDepthFormat),
-      indicators_(context, RenderTarget::kColorFormat, RenderTarget::kDepthFormat) {
+      indicators_(context, DrawTarget{RenderTarget::kColorFormat, RenderTarget::kDepthFormat},
+                  std::max<std::uint32_t>(kDefaultSourceCapacity, static_cast<std::uint32_t>(world.sources.size()))) {
+  scene_depth_ = indicators_.scene_depths().add(target_.depth_view());
   // Timestamps are optional; this limit promises them on every graphics and
   // compute queue, so the context's queue family need not be asked.
   if (context_.properties().limits.timestampComputeAndGraphics) {
@@ -29,22 +35,21 @@ Renderer::Renderer(vk::Context& context, const World& world, const RenderSetting
 
 RgbaImage Renderer::render(const ViewCamera& camera, Simulator& simulator) {
   const World& world = simulator.world();
-  IndicatorClock clock;
-  const std::uint64_t steps = simulator.steps_run();
-  clock.current_step = steps > 0 ? static_cast<std::uint32_t>(steps - 1) : 0u;
-  clock.dt = static_cast<float>(world.config.dt);
-  clock.lifetime = world.config.indicator_lifetime;
   if (auto view = gpu::indicator_view(simulator); view && view->context == &context_)
-    return render(camera, *view, clock);
+    return render(camera, *view, world, simulator.steps_run());
   // Another backend (or another device): the indicators come through the host.
   if (!host_indicators_) host_indicators_.emplace(context_);
   host_indicators_->upload(simulator.live_indicators().value());
-  return render(camera, host_indicators_->view(), clock);
+  return render(camera, host_indicators_->view(), world, simulator.steps_run());
 }
 
-RgbaImage Renderer::render(const ViewCamera& camera, const gpu::IndicatorView& indicators,
-                           const IndicatorClock& clock) {
+RgbaImage Renderer::render(const ViewCamera& camera, const gpu::IndicatorView& indicators, const World& world,
+                           std::uint64_t steps_run) {
   indicators_.bind(indicators);  // the previous frame has finished: the set is free to update
+  const DisplayFrame frame = DisplayFrame::from(world, steps_run, world.config.display, /*arrows_by_default=*/true);
+  const std::vector<shader::DisplaySource> sources = make_display_sources(world, world.config.display);
+  const DrawView view = DrawView::from(camera.view, camera.projection,
+                                       glm::vec2(float(target_.width()), float(target_.height())));
   // One command buffer per frame, submitted and waited for: a picture is
   // read back right away, so there is nothing to overlap.
   context_.submit_and_wait([&](VkCommandBuffer cmd) {
@@ -59,12 +64,16 @@ RgbaImage Renderer::render(const ViewCamera& camera, const gpu::IndicatorView& i
     // shader and indirect-argument read. (Host-written rings need nothing: a
     // submit makes earlier host writes to coherent memory visible.)
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                           VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+    indicators_.record_prepare(cmd, sources, frame);
     target_.begin(cmd, ScenePass::kClearColor);
     scene_.record(cmd, camera, listener_);
     if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
-    indicators_.record(cmd, camera, indicators, clock);
+    target_.begin_overlays(cmd);
+    indicators_.record(cmd, view, frame, scene_depth_);
+    indicators_.record_arrows(cmd, view, frame);
     if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 2);
     target_.end_and_copy(cmd);
     if (queries != VK_NULL_HANDLE) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 3);

@@ -45,15 +45,18 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // The scene and `simulator`'s live indicators as they are after its last
-  // step. A GPU simulator on this renderer's context is drawn straight from
-  // its ring and indirect arguments (nothing read back); any other backend
-  // through live_indicators(), uploaded into a host-visible ring.
+  // step, shown as its config's `display` says (off-screen arrows on unless
+  // it says otherwise), clipped to their surfaces. A GPU simulator on this
+  // renderer's context is drawn straight from its ring and indirect
+  // arguments (nothing read back); any other backend through
+  // live_indicators(), uploaded into a host-visible ring.
   RgbaImage render(const ViewCamera& camera, Simulator& simulator);
 
-  // The scene and the ring of `indicators` (on this renderer's context),
-  // aged by `clock`. Ring and arguments written by compute work submitted
-  // earlier are made visible by the frame's first barrier.
-  RgbaImage render(const ViewCamera& camera, const gpu::IndicatorView& indicators, const IndicatorClock& clock);
+  // The scene and the ring of `indicators` (on this renderer's context) of
+  // `world` after `steps_run` steps. Ring and arguments written by compute
+  // work submitted earlier are made visible by the frame's first barrier.
+  RgbaImage render(const ViewCamera& camera, const gpu::IndicatorView& indicators, const World& world,
+                   std::uint64_t steps_run);
 
   // Timings of the last frame; empty when the queue has no timestamps.
   std::optional<FrameTimings> last_timings() const { return last_timings_; }
@@ -68,6 +71,7 @@ class Renderer {
   RenderTarget target_;
   ScenePass scene_;
   IndicatorPass indicators_;
+  VkDescriptorSet scene_depth_ = VK_NULL_HANDLE;  // the target's depth, for clipping
   std::optional<HostIndicators> host_indicators_;  // made on first use by a host-side backend
   vk::UniqueQueryPool timestamps_;                 // kQueries: start, scene done, indicators done, copy done
   std::optional<FrameTimings> last_timings_;

@@ -95,8 +95,8 @@ SceneMesh build_scene_mesh(const World& world, bool markers) {
   }
   mesh.level_triangles = static_cast<std::uint32_t>(mesh.triangles.size());
   if (!markers) return mesh;
-  for (const SourceDesc& source : world.sources)
-    add_octahedron(mesh.triangles, source.position, kSourceMarkerRadius, source.color);
+  for (std::size_t id = 0; id < world.sources.size(); ++id)
+    add_octahedron(mesh.triangles, world.sources[id].position, kSourceMarkerRadius, world.source_colors[id]);
   mesh.source_marker_triangles = static_cast<std::uint32_t>(mesh.triangles.size()) - mesh.level_triangles;
   add_pyramid(mesh.triangles, world.listener, kListenerMarkerHeight, glm::vec3(1.0f));
   mesh.listener_marker_triangles =

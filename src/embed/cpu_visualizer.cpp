@@ -6,6 +6,7 @@
 
 #include "embed/cpu_step_thread.h"
 #include "embed/visualizers.h"
+#include "sim/indicator_ring.h"
 #include "sp_draw_types.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
@@ -25,7 +26,9 @@ class CpuVisualizer final : public VisualizerBase {
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
               "cpu indicator ring"),
         draw_args_(*context_, sizeof(VkDrawIndirectCommand),
-                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
+                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,  // the display prepass reads the instance count
+                   vk::MemoryUsage::DeviceLocal,
                    "cpu indicator draw args"),
         worker_(settings.cpu.threads, scene_.world().layer_names.size()) {}
 
@@ -60,7 +63,7 @@ class CpuVisualizer final : public VisualizerBase {
         throw;
       }
       if (finished != nullptr) {
-        upload_step(cmd, finished->indicators);
+        upload_step(cmd, admit(finished->indicators, ring_quota_, inverse_indicator_size_));
         worker_.release();
         steps_run_ = running_step_ + 1;
         handed = 1;
@@ -72,6 +75,7 @@ class CpuVisualizer final : public VisualizerBase {
                          VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT |
                              (simulation_on_graphics_queue_ ? VK_ACCESS_2_SHADER_STORAGE_READ_BIT : VK_ACCESS_2_NONE));
       recorded_ = true;
+      record_display(cmd);
       return handed;
     });
   }
@@ -99,9 +103,8 @@ class CpuVisualizer final : public VisualizerBase {
     due_ -= 1;
   }
 
-  // Appends a step's indicators to the ring as IndicatorRing does (the
-  // oldest overwritten; of more than capacity only the newest stay),
-  // uploading only the slots that changed.
+  // Appends a step's admitted indicators to the ring as IndicatorRing does
+  // (the oldest overwritten), uploading only the slots that changed.
   void upload_step(VkCommandBuffer cmd, std::span<const Indicator> indicators) {
     if (indicators.size() > capacity_) indicators = indicators.last(capacity_);
     std::size_t done = 0;
@@ -124,6 +127,8 @@ class CpuVisualizer final : public VisualizerBase {
 
   std::uint32_t max_steps_;
   std::uint32_t capacity_;
+  std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
+  float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
   std::vector<shader::LayerAcoustics> layer_table_;
   vk::Buffer ring_;
   vk::Buffer draw_args_;

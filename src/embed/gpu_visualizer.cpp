@@ -29,6 +29,7 @@ class GpuVisualizer final : public VisualizerBase {
       engine_.record(cmd, scene_, steps_run_, steps, options);
       steps_run_ += steps;
       recorded_ = true;
+      record_display(cmd);
       return steps;
     }, ErrorCode::Vulkan);
   }

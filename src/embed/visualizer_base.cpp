@@ -5,6 +5,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/finite.h"
+#include "draw/display_sources.h"
 
 namespace sp::embed {
 namespace {
@@ -19,7 +20,7 @@ VisualizerBase::VisualizerBase(std::unique_ptr<vk::Context> context, const DrawT
       scene_(std::move(world)),
       clock_(scene_.world().config.dt, settings.max_steps_per_frame),
       simulation_on_graphics_queue_(simulation_on_graphics_queue),
-      pass_(*context_, target) {}
+      pass_(*context_, target, scene_.source_capacity()) {}
 
 Result<bool> VisualizerBase::check_simulation_args(VkCommandBuffer cmd, double dt) const {
   if (cmd == VK_NULL_HANDLE) return invalid("record_simulation: the command buffer is VK_NULL_HANDLE");
@@ -29,18 +30,28 @@ Result<bool> VisualizerBase::check_simulation_args(VkCommandBuffer cmd, double d
 
 Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
                                          const VkRect2D* area) {
+  DrawOptions options;
+  options.area = area;
+  if (area != nullptr) {
+    options.viewport_width = area->extent.width;
+    options.viewport_height = area->extent.height;
+  }
+  return record_draw(cmd, view, projection, options);
+}
+
+Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+                                         const DrawOptions& options) {
   if (cmd == VK_NULL_HANDLE) return invalid("record_draw: the command buffer is VK_NULL_HANDLE");
   if (!all_finite(view) || !all_finite(projection)) return invalid("record_draw: view and projection must be finite");
+  const VkRect2D* area = options.area;
   if (area != nullptr && (area->extent.width == 0 || area->extent.height == 0))
     return invalid("record_draw: the area is empty");
+  if (options.scene_depth >= 0 && static_cast<std::size_t>(options.scene_depth) >= scene_depths_.size())
+    return invalid("record_draw: scene_depth " + std::to_string(options.scene_depth) + " is not a registered view (" +
+                   std::to_string(scene_depths_.size()) + " registered with set_scene_depth)");
   if (!ready_to_draw())
     return invalid("record_draw: record_simulation must be recorded (and submitted first) before the first draw");
   return capture_errors([&] {
-    const gpu::IndicatorView indicators = indicator_view();
-    if (!pass_bound_) {
-      pass_.bind(indicators);  // the ring never moves: bound once
-      pass_bound_ = true;
-    }
     if (area != nullptr) {
       VkViewport viewport{};
       viewport.x = static_cast<float>(area->offset.x);
@@ -52,14 +63,46 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& v
       vkCmdSetScissor(cmd, 0, 1, area);
     }
     const World& world = scene_.world();
-    draw::IndicatorClock clock;
-    clock.current_step = steps_run() == 0 ? 0u : static_cast<std::uint32_t>(steps_run() - 1);
-    clock.dt = static_cast<float>(world.config.dt);
-    clock.lifetime = world.config.indicator_lifetime;
-    const glm::vec3 eye(glm::inverse(view)[3]);
-    pass_.record(cmd, projection * view, eye, indicators, clock);
+    const glm::vec2 size(static_cast<float>(options.viewport_width), static_cast<float>(options.viewport_height));
+    const bool sized = size.x > 0.0f && size.y > 0.0f;
+    draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
+    const draw::DrawView draw_view = draw::DrawView::from(view, projection, sized ? size : glm::vec2(1.0f));
+    const VkDescriptorSet depth = options.scene_depth >= 0 ? scene_depths_[std::size_t(options.scene_depth)]
+                                                           : VK_NULL_HANDLE;
+    pass_.record(cmd, draw_view, frame, depth);
+    if (sized) pass_.record_arrows(cmd, draw_view, frame);
     return true;
   });
+}
+
+Result<bool> VisualizerBase::set_display(const DisplaySettings& settings) {
+  return capture_errors([&] {
+    scene_.set_display(settings).value();
+    return true;
+  }, ErrorCode::InvalidConfig);
+}
+
+Result<bool> VisualizerBase::set_scene_depth(std::span<const VkImageView> views) {
+  return capture_errors([&] {
+    if (views.size() > 8) throw Exception(ErrorCode::LimitExceeded, "set_scene_depth: at most 8 views");
+    for (VkImageView view : views)
+      if (view == VK_NULL_HANDLE) throw Exception(ErrorCode::InvalidArgument, "set_scene_depth: a view is VK_NULL_HANDLE");
+    pass_.scene_depths().clear();
+    scene_depths_.clear();
+    for (VkImageView view : views) scene_depths_.push_back(pass_.scene_depths().add(view));
+    return true;
+  });
+}
+
+void VisualizerBase::record_display(VkCommandBuffer cmd) {
+  if (!pass_bound_) {
+    pass_.bind(indicator_view());  // the ring never moves: bound once
+    pass_bound_ = true;
+  }
+  const World& world = scene_.world();
+  const std::vector<shader::DisplaySource> sources = draw::make_display_sources(world, world.config.display);
+  const draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
+  pass_.record_prepare(cmd, sources, frame, simulation_on_graphics_queue_);
 }
 
 }  // namespace sp::embed

@@ -1,9 +1,10 @@
 // What both visualizer backends share: the borrowed device, the scene, the
-// indicator pass built for the host's attachments, the frame clock, and the
-// argument checks of the record calls.
+// indicator pass built for the host's attachments, the display settings,
+// the frame clock, and the argument checks of the record calls.
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "draw/indicator_pass.h"
 #include "embed/frame_clock.h"
@@ -22,6 +23,11 @@ class VisualizerBase : public Visualizer {
 
   Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
                            const VkRect2D* area) override;
+  Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+                           const DrawOptions& options) override;
+  Result<bool> set_display(const DisplaySettings& settings) override;
+  const DisplaySettings& display() const override { return scene_.world().config.display; }
+  Result<bool> set_scene_depth(std::span<const VkImageView> views) override;
 
  protected:
   // The ring to draw and whether it has been initialised by a recorded
@@ -32,6 +38,10 @@ class VisualizerBase : public Visualizer {
   // Checks record_simulation's arguments; an Error names the problem.
   Result<bool> check_simulation_args(VkCommandBuffer cmd, double dt) const;
 
+  // The end of every record_simulation: the display's source table and
+  // prepass (live spots per source, caps), after the ring's last writes.
+  void record_display(VkCommandBuffer cmd);
+
   std::unique_ptr<vk::Context> context_;
   SoundScene scene_;
   FrameClock clock_;
@@ -41,6 +51,7 @@ class VisualizerBase : public Visualizer {
 
  private:
   draw::IndicatorPass pass_;
+  std::vector<VkDescriptorSet> scene_depths_;
   bool pass_bound_ = false;
 };
 

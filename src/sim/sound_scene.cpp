@@ -5,7 +5,9 @@
 #include <string>
 
 #include "core/finite.h"
+#include "display/display_checks.h"
 #include "sim/source_checks.h"
+#include "sim/source_display.h"
 #include "sim/step_plan.h"
 #include "soundpaint/simulation.h"
 
@@ -38,6 +40,9 @@ Result<bool> check_duration(const char* what, double duration) {
 
 SoundScene::SoundScene(World world) : world_(std::move(world)) {
   if (world_.source_active.size() != world_.sources.size()) world_.source_active.assign(world_.sources.size(), true);
+  // A World made by hand rather than by make_world.
+  if (world_.source_colors.size() != world_.sources.size() || world_.category_names.empty())
+    resolve_all_source_display(world_);
   capacity_ = std::max<std::uint32_t>(kDefaultSourceCapacity, static_cast<std::uint32_t>(world_.sources.size()));
   active_count_ = static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));
   play_windows_.resize(world_.sources.size());
@@ -83,6 +88,7 @@ Result<std::uint32_t> SoundScene::add_slot(const char* what, const SourceDesc& s
     play_windows_[id] = {};
     one_shot_[id] = false;
   }
+  resolve_source_display(world_, id);
   active_count_ += 1;
   return id;
 }
@@ -102,6 +108,18 @@ Result<bool> SoundScene::update_source(std::uint32_t id, const SourceDesc& sourc
     world_.sources[id].interval = previous.interval;
     world_.sources[id].phase = previous.phase;
   }
+  resolve_source_display(world_, id);
+  return true;
+}
+
+Result<bool> SoundScene::set_display(const DisplaySettings& settings) {
+  auto checked = capture_errors([&] {
+    check_display_settings(settings);
+    return true;
+  }, ErrorCode::InvalidConfig);
+  if (!checked) return checked.error();
+  world_.config.display = settings;
+  for (std::uint32_t id = 0; id < world_.sources.size(); ++id) resolve_source_display(world_, id);
   return true;
 }
 

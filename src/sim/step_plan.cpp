@@ -62,7 +62,7 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
     shader::StepSource entry{};
     entry.position = source.position;
     entry.max_distance = source.max_distance;
-    entry.color = source.color;
+    entry.color = world.source_colors[id];
     entry.loudness = source.loudness;
     entry.intensity = static_cast<float>(proximity);
     entry.source_id = id;

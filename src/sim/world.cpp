@@ -4,7 +4,10 @@
 
 #include "bvh/mesh_topology.h"
 #include "core/finite.h"
+#include "display/display_checks.h"
 #include "sim/source_checks.h"
+#include "sim/source_display.h"
+#include "sp_ring.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -43,8 +46,9 @@ void check_source(const SourceDesc& s, std::size_t id) {
     throw Exception(ErrorCode::InvalidArgument, "source " + std::to_string(id) + ": " + what);
   };
   if (!all_finite(s.position)) fail("position is not finite");
-  for (int c = 0; c < 3; ++c)
-    if (!(s.color[c] >= 0.0f && s.color[c] <= 1.0f)) fail("color components must be in [0, 1]");
+  if (s.color)
+    for (int c = 0; c < 3; ++c)
+      if (!((*s.color)[c] >= 0.0f && (*s.color)[c] <= 1.0f)) fail("color components must be in [0, 1]");
   if (!(s.max_distance >= 0.0f) || !std::isfinite(s.max_distance)) fail("max_distance must be finite and >= 0");
   if (!(s.loudness >= 0.0f) || !std::isfinite(s.loudness)) fail("loudness must be finite and >= 0");
   if (!(s.interval > 0.0) || !std::isfinite(s.interval)) fail("interval must be finite and > 0");
@@ -79,6 +83,7 @@ void check_config(const Config& c) {
       fail("layers." + name + ".attenuation must be finite and >= 0");
   }
   if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
+  check_display_settings(c.display);
 }
 
 }  // namespace
@@ -93,6 +98,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     world.sources.insert(world.sources.end(), config.sources.begin(), config.sources.end());
     for (std::size_t id = 0; id < world.sources.size(); ++id) check_source(world.sources[id], id);
     world.source_active.assign(world.sources.size(), true);
+    resolve_all_source_display(world);
     if (config.listener_position) {
       world.listener = *config.listener_position;
     } else if (scene.camera) {
@@ -123,9 +129,8 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
 }
 
 float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds) {
-  if (!(lifetime_seconds > 0.0f)) return 0.0f;
-  double fade = std::clamp(1.0 - age_seconds / static_cast<double>(lifetime_seconds), 0.0, 1.0);
-  return static_cast<float>(static_cast<double>(indicator.intensity) * fade);
+  if (!(lifetime_seconds > 0.0f) || !(age_seconds >= 0.0)) return 0.0f;
+  return shader::sp_indicator_opacity(indicator.intensity, static_cast<float>(age_seconds), lifetime_seconds);
 }
 
 }  // namespace sp

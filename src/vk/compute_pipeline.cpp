@@ -52,7 +52,12 @@ StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_c
 }
 
 void StorageBindings::bind(const Context& context, std::uint32_t binding, const Buffer& buffer) {
-  const VkDescriptorBufferInfo info{buffer.get(), 0, VK_WHOLE_SIZE};
+  bind(context, binding, buffer.get());
+}
+
+void StorageBindings::bind(const Context& context, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset,
+                           VkDeviceSize range) {
+  const VkDescriptorBufferInfo info{buffer, offset, range};
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
   write.dstSet = set_;

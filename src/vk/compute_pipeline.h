@@ -26,6 +26,9 @@ class StorageBindings {
   // Points binding `binding` at the whole of `buffer`. Not while a command
   // buffer using the set is pending.
   void bind(const Context& context, std::uint32_t binding, const Buffer& buffer);
+  // The same for a buffer owned elsewhere, or a part of one.
+  void bind(const Context& context, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
+            VkDeviceSize range = VK_WHOLE_SIZE);
 
   VkDescriptorSetLayout layout() const { return layout_.get(); }
   VkDescriptorSet set() const { return set_; }

@@ -59,5 +59,6 @@ using UniqueFence = DeviceObject<VkFence, vkDestroyFence>;
 using UniqueQueryPool = DeviceObject<VkQueryPool, vkDestroyQueryPool>;
 using UniqueImage = DeviceObject<VkImage, vkDestroyImage>;
 using UniqueImageView = DeviceObject<VkImageView, vkDestroyImageView>;
+using UniqueSampler = DeviceObject<VkSampler, vkDestroySampler>;
 
 }  // namespace sp::vk

@@ -1,0 +1,13 @@
+// Checks display settings made in code rather than parsed from a config
+// (the parser checks its own input, with key paths).
+#pragma once
+
+#include "soundpaint/display.h"
+
+namespace sp {
+
+// Throws sp::Exception(InvalidConfig) naming the key ("display.size_scale")
+// when a setting is out of its range (SPEC 1.5).
+void check_display_settings(const DisplaySettings& settings);
+
+}  // namespace sp

@@ -1,0 +1,45 @@
+// What one frame's indicator draw needs besides the ring: how the host
+// looks at the scene (DrawView) and what the display shows (DisplayFrame).
+#pragma once
+
+#include <cstdint>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "soundpaint/display.h"
+#include "soundpaint/simulation.h"
+
+namespace sp::draw {
+
+struct DrawView {
+  glm::mat4 view_projection{1.0f};  // world -> Vulkan clip space
+  glm::vec3 eye{0.0f};              // camera position, world space
+  glm::vec2 viewport{1.0f};         // pixels
+  float pixel_scale = 1.0f;         // pixels per metre 1 m ahead: projection[1][1] * height / 2
+  float depth_a = 0.0f;             // projection[2][2]; view distance = depth_b / (depth + depth_a)
+  float depth_b = 0.0f;             // projection[3][2]
+
+  // From the host's matrices (Vulkan clip space, a perspective projection)
+  // and the viewport's size in pixels.
+  static DrawView from(const glm::mat4& view, const glm::mat4& projection, glm::vec2 viewport);
+};
+
+struct DisplayFrame {
+  std::uint32_t current_step = 0;    // the last step run: ages count from it
+  float dt = 1.0f / 60.0f;           // seconds per step
+  float lifetime = 1.0f;             // the display's lifetime (display_lifetime())
+  float inv_indicator_size = 0.0f;   // 1 / indicator_size, 0 when it is 0
+  std::uint32_t source_count = 0;    // entries of the source table
+  std::uint32_t category_count = 0;  // categories the world numbers
+  DisplaySettings settings;
+  bool offscreen_arrows = false;     // settings.offscreen_arrows, or the front end's default
+
+  // For `world` after `steps_run` steps, shown as `settings` say;
+  // `arrows_by_default` where the settings leave arrows unset.
+  static DisplayFrame from(const World& world, std::uint64_t steps_run, const DisplaySettings& settings,
+                           bool arrows_by_default);
+};
+
+}  // namespace sp::draw
