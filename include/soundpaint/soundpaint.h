@@ -373,6 +373,74 @@ sp_result sp_sound_scene_has_source(const sp_sound_scene* scene, uint32_t id, in
 /* *out (non-NULL) receives how many sources may be live at once. */
 sp_result sp_sound_scene_source_capacity(const sp_sound_scene* scene, uint32_t* out) SP_NOEXCEPT;
 
+/* --- Display: how indicators are drawn, so that a player who cannot hear
+ * reads where a sound is, what it is and how close. The config's "display"
+ * object as a struct (the C counterpart of sp::DisplaySettings in
+ * include/soundpaint/display.h), for settings a game changes at run time
+ * (sp_visualizer_set_display, soundpaint_vulkan.h). It never changes the
+ * simulation, except that a source without its own colour takes its
+ * category's palette colour. */
+
+/* Category colours for sources without their own colour. */
+typedef enum sp_palette {
+  SP_PALETTE_OKABE_ITO = 0,     /* colour-blind safe (Okabe & Ito), the default */
+  SP_PALETTE_HIGH_CONTRAST = 1, /* saturated colours that stand out on dark and light levels */
+  SP_PALETTE_SINGLE_HUE = 2     /* one hue for every category: shapes alone tell them apart */
+} sp_palette;
+
+/* Indicator shapes (sp_display_settings.shapes), one per kind of sound.
+ * Macros, not an enum: they are the shaders' own ids, defined token for
+ * token as in the library's shader header so that both may be included. */
+#define SP_SHAPE_DISC 0u
+#define SP_SHAPE_RING 1u
+#define SP_SHAPE_DIAMOND 2u
+#define SP_SHAPE_CROSS 3u    /* a diagonal cross, x */
+#define SP_SHAPE_PLUS 4u     /* an upright cross, + */
+#define SP_SHAPE_TRIANGLE 5u
+#define SP_SHAPE_SQUARE 6u
+#define SP_SHAPE_STAR 7u
+#define SP_SHAPE_HEXAGON 8u
+#define SP_SHAPE_CLOVER 9u   /* three small discs */
+
+/* The display settings. Fill it with sp_display_settings_init first: later
+ * versions may add fields that bindings then need not know. Every field is
+ * checked by the call that takes it (SP_ERROR_INVALID_ARGUMENT naming the
+ * field); the strings and arrays are only read during that call (copied). */
+typedef struct sp_display_settings {
+  sp_palette palette;  /* default SP_PALETTE_OKABE_ITO */
+  int direction;       /* 1 (default): each spot is elongated along its ray's direction of travel,
+                          pointing away from where the sound came from; 0: round. 0 or 1 */
+  int outline;         /* 1 (default): a two-tone halo keeps >= 3:1 contrast on any surface; 0 or 1 */
+  float size_scale;    /* multiplies every spot's size; finite, > 0; default 1 */
+  float opacity_scale; /* multiplies every spot's opacity; finite, >= 0; default 1 */
+  float min_opacity;   /* live spots are never drawn fainter than this; in [0, 1]; default 0 */
+  /* At most this many live indicators drawn per category, the most
+   * energetic first; 0 (the default): no cap. (To draw none of a category,
+   * hide it.) */
+  uint32_t max_per_category;
+  /* An arrow at the screen's edge, in the source's colour, for each source
+   * heard (it has live indicators) but out of view: 1 on, 0 off, -1 (the
+   * default) the front end decides, which for the visualizer is off. Needs
+   * the viewport's size (sp_draw_options). */
+  int offscreen_arrows;
+  /* Categories not drawn (the player's own footsteps, say): hide_category_count
+   * non-NULL, non-empty UTF-8 names. hide_categories may be NULL only when
+   * the count is 0 (the default: every category drawn). */
+  const char* const* hide_categories;
+  uint32_t hide_category_count;
+  /* Shapes for categories, over the built-in map (footsteps, gunfire, ...;
+   * other categories draw as discs): shape_categories[i] (non-NULL,
+   * non-empty UTF-8, each named once) is drawn as shapes[i] (an SP_SHAPE_*).
+   * Both arrays may be NULL only when shape_count is 0 (the default). */
+  const char* const* shape_categories;
+  const uint32_t* shapes;
+  uint32_t shape_count;
+} sp_display_settings;
+
+/* Fills *settings with the library's defaults (those of a config without
+ * "display", see sp_display_settings). NULL is a no-op. Thread-safe. */
+void sp_display_settings_init(sp_display_settings* settings) SP_NOEXCEPT;
+
 #ifdef __cplusplus
 }  /* extern "C" */
 #endif

@@ -131,6 +131,68 @@ sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBu
 sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
                                     const float projection[16], const VkRect2D* area) SP_NOEXCEPT;
 
+/* What sp_visualizer_record_draw_ex needs beyond the host's matrices
+ * (see sp::DrawOptions). Fill it with sp_draw_options_init first: later
+ * versions may add fields. */
+typedef struct sp_draw_options {
+  /* NULL (the default): the viewport and scissor set in the command buffer
+   * are used; else both are set to it (non-empty). Only read during the call. */
+  const VkRect2D* area;
+  /* The viewport's size in pixels: with it spots are never drawn smaller
+   * than their shapes need, and off-screen arrows can be placed. Both 0
+   * (the default) or both > 0; 0 x 0 with an area takes the area's extent,
+   * 0 x 0 without one does without both. With an area, equal to its extent. */
+  uint32_t viewport_width;
+  uint32_t viewport_height;
+  /* Index of a view registered with sp_visualizer_set_scene_depth: spots are
+   * then clipped to the surface they lie on (no colour bleeding under a
+   * wall or into the air). That depth image must be in
+   * VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL (or DEPTH_STENCIL_READ_ONLY)
+   * during the draw, e.g. as the rendering's read-only depth attachment.
+   * -1 (the default): no clipping. */
+  int32_t scene_depth;
+} sp_draw_options;
+
+/* Fills *options (NULL: no-op) with the defaults: no area, 0 x 0, no scene
+ * depth. Thread-safe. */
+void sp_draw_options_init(sp_draw_options* options) SP_NOEXCEPT;
+
+/* sp_visualizer_record_draw with the display's options (*options non-NULL,
+ * every field checked): clipping to surfaces, and the viewport size that the
+ * minimum spot size and off-screen arrows need. Off-screen arrows are drawn
+ * when the display settings ask for them and the viewport size is known.
+ * Errors: as sp_visualizer_record_draw, plus SP_ERROR_INVALID_ARGUMENT
+ * naming the field (NULL options, one viewport side 0, a size unlike the
+ * area's, scene_depth below -1 or not a registered view). */
+sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                       const float projection[16], const sp_draw_options* options) SP_NOEXCEPT;
+
+/* How the indicators are drawn from now on (initially the config's
+ * "display"): *settings (non-NULL, filled by sp_display_settings_init and
+ * then changed) replaces every display setting; its strings are copied.
+ * Applies from the next sp_visualizer_record_simulation; sources without
+ * their own colour take the new palette's colour from their next indicators
+ * on. Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live; a bad field,
+ * named: an unknown palette or shape, a flag not 0 or 1, offscreen_arrows
+ * not -1, 0 or 1, a non-finite or out-of-range number, a NULL array with a
+ * count above 0, a NULL or empty category, a category given two shapes);
+ * on error nothing changes. */
+sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_settings* settings) SP_NOEXCEPT;
+
+/* Registers the depth image views that sp_draw_options.scene_depth indexes
+ * (e.g. one per swapchain image), replacing earlier ones; count 0 (views
+ * may then be NULL) registers none. views: count non-null views of a depth
+ * aspect, single-sample (resolve a multisampled depth first), each with
+ * VK_IMAGE_USAGE_SAMPLED_BIT; only read during the call, the views
+ * borrowed until replaced or the visualizer is destroyed. At most 8.
+ * Only when no recorded draw is pending (after the host's vkDeviceWaitIdle
+ * when it recreates its swapchain, say).
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL views with a
+ * count above 0, a VK_NULL_HANDLE view, named by index),
+ * SP_ERROR_LIMIT_EXCEEDED (count above 8), SP_ERROR_VULKAN. */
+sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImageView* views,
+                                        uint32_t count) SP_NOEXCEPT;
+
 /* Blocks until the CPU backend's step in progress (if any) is finished, so
  * that the next record_simulation hands it over. For loading screens,
  * shutdown and tests; never needed in a frame. No-op for the GPU backend.

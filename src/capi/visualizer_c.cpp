@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "capi/capi_internal.h"
+#include "capi/display_c.h"
 #include "soundpaint/visualizer.h"
 
 struct sp_visualizer {
@@ -158,6 +160,41 @@ sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer c
     const glm::mat4 view_matrix = to_matrix(view, fn, "view");
     const glm::mat4 projection_matrix = to_matrix(projection, fn, "projection");
     unwrap(v.record_draw(cmd, view_matrix, projection_matrix, area));
+  });
+}
+
+sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                       const float projection[16], const sp_draw_options* options) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_record_draw_ex";
+    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
+    const glm::mat4 view_matrix = to_matrix(view, fn, "view");
+    const glm::mat4 projection_matrix = to_matrix(projection, fn, "projection");
+    require(options != nullptr, fn, "options is NULL");
+    unwrap(v.record_draw(cmd, view_matrix, projection_matrix, sp::capi::draw_options_from(*options, fn)));
+  });
+}
+
+sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_settings* settings) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_set_display";
+    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(settings != nullptr, fn, "settings is NULL");
+    unwrap(v.set_display(sp::capi::display_settings_from(*settings, fn)));
+  });
+}
+
+sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImageView* views, uint32_t count) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_visualizer_set_scene_depth";
+    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    require(count == 0 || views != nullptr, fn, "views is NULL but count is above 0");
+    // Named by index here; the visualizer would only say that one is null.
+    for (uint32_t i = 0; i < count; ++i)
+      if (views[i] == VK_NULL_HANDLE)
+        sp::capi::throw_invalid(fn, "views[" + std::to_string(i) + "] is VK_NULL_HANDLE");
+    unwrap(v.set_scene_depth(std::span<const VkImageView>(views, count)));
   });
 }
 
