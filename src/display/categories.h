@@ -1,6 +1,6 @@
 // Categories of sound, numbered, with their shape and palette colour: a
 // source's own colour wins, else its category's colour in the display
-// palette (docs/accessibility-colour.md).
+// palette (docs/accessibility.md, "Colour").
 #pragma once
 
 #include <cstddef>

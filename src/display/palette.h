@@ -2,7 +2,7 @@
 // linear RGB: the renderer works in linear light and encodes sRGB on output,
 // and the `color` a config gives a source is linear RGB too. The choice of
 // each colour, and how far apart they stay under colour-vision deficiencies,
-// is in docs/accessibility-colour.md; tests/test_palette.cpp checks it.
+// is in docs/accessibility.md ("Colour"); tests/test_palette.cpp checks it.
 #pragma once
 
 #include <glm/vec3.hpp>
