@@ -17,6 +17,7 @@ layout(location = 1) flat out vec4 out_color;   // rgb, opacity
 layout(location = 2) flat out vec4 out_shape;   // shape id, tail length (radii), 1 for direct sound, radius (m)
 layout(location = 3) out vec3 out_world;        // the fragment's point on the quad, world space
 layout(location = 4) flat out vec3 out_anchor;  // the spot's centre on the quad, world space
+layout(location = 5) flat out vec3 out_normal;  // the surface's unit normal
 
 // The quad's corners in the spot's frame, before its extents are applied:
 // two counter-clockwise triangles covering [-1, 1]^2.
@@ -42,6 +43,7 @@ void collapse() {
   out_shape = vec4(0.0);
   out_world = vec3(0.0);
   out_anchor = vec3(0.0);
+  out_normal = vec3(0.0);
 }
 
 void main() {
@@ -78,11 +80,12 @@ void main() {
   float tail = (push.flags & SP_DRAW_DIRECTION) != 0u ? kMaxTail * min(along_length, 1.0) : 0.0;
 
   // Radius: the SPEC's size (a diameter) scaled, but never under
-  // min_pixels across on screen, where a shape stops being recognisable.
+  // SP_SHAPE_MIN_PIXELS across on screen, where a shape stops being
+  // recognisable (when the viewport's size is known).
   float radius = 0.5 * ind.size * push.size_scale * (direct ? kDirectSize : 1.0);
   vec4 centre_clip = push.view_proj * vec4(ind.position, 1.0);
   float distance = max(centre_clip.w, 1.0e-3);
-  radius = max(radius, 0.5 * push.min_pixels * distance / push.pixel_scale);
+  if (push.pixel_scale > 0.0) radius = max(radius, 0.5 * SP_SHAPE_MIN_PIXELS * distance / push.pixel_scale);
 
   vec2 corner = kCorners[gl_VertexIndex];
   // x from the tail's end to past the head, y across: both with the margin.
@@ -94,5 +97,6 @@ void main() {
   out_shape = vec4(float(source.shape_flags & 0xFFu), tail, direct ? 1.0 : 0.0, radius);
   out_world = p;
   out_anchor = anchor;
+  out_normal = n;
   gl_Position = push.view_proj * vec4(p, 1.0);
 }

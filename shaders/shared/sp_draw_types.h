@@ -114,8 +114,9 @@ struct IndicatorPush {
   uint current_step;   // the step the picture shows (the last one run)
   float dt;            // seconds per step
   float lifetime;      // the display's lifetime: max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME), seconds
-  float pixel_scale;   // pixels per metre at 1 m in front of the eye: projection[1][1] * viewport height / 2
-  float min_pixels;    // the smallest diameter a spot is drawn at, pixels
+  float pixel_scale;   // pixels per metre at 1 m in front of the eye, |projection[1][1]| * viewport height / 2;
+                       // 0 when the viewport is unknown (no minimum size)
+  float viewport_width;  // pixels; 0 when unknown
   float size_scale;    // display.size_scale
   float opacity_scale; // display.opacity_scale
   float min_opacity;   // display.min_opacity
@@ -123,7 +124,7 @@ struct IndicatorPush {
   float depth_a;       // the projection's depth terms, projection[2][2] and [3][2]:
   float depth_b;       //   view distance = depth_b / (depth + depth_a) for a perspective projection
   float inv_indicator_size;  // 1 / indicator_size: size * this = E / E0
-  uint pad0;
+  float viewport_height;     // pixels; 0 when unknown
 };
 
 // Push constants of the display prepass (display_prepass.comp), 32 bytes.

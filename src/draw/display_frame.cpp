@@ -1,6 +1,7 @@
 #include "draw/display_frame.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/matrix.hpp>
 
@@ -13,7 +14,8 @@ DrawView DrawView::from(const glm::mat4& view, const glm::mat4& projection, glm:
   v.view_projection = projection * view;
   v.eye = glm::vec3(glm::inverse(view)[3]);
   v.viewport = viewport;
-  v.pixel_scale = projection[1][1] * viewport.y * 0.5f;
+  // |.|: most Vulkan projections flip y, which makes projection[1][1] < 0.
+  v.pixel_scale = std::abs(projection[1][1]) * viewport.y * 0.5f;
   v.depth_a = projection[2][2];
   v.depth_b = projection[3][2];
   return v;

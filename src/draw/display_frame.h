@@ -17,7 +17,7 @@ struct DrawView {
   glm::mat4 view_projection{1.0f};  // world -> Vulkan clip space
   glm::vec3 eye{0.0f};              // camera position, world space
   glm::vec2 viewport{1.0f};         // pixels
-  float pixel_scale = 1.0f;         // pixels per metre 1 m ahead: projection[1][1] * height / 2
+  float pixel_scale = 0.0f;         // pixels per metre 1 m ahead: |projection[1][1]| * height / 2; 0: unknown
   float depth_a = 0.0f;             // projection[2][2]; view distance = depth_b / (depth + depth_a)
   float depth_b = 0.0f;             // projection[3][2]
 

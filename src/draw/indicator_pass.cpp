@@ -163,7 +163,8 @@ void IndicatorPass::record(VkCommandBuffer cmd, const DrawView& view, const Disp
   push.dt = frame.dt;
   push.lifetime = frame.lifetime;
   push.pixel_scale = view.pixel_scale;
-  push.min_pixels = SP_SHAPE_MIN_PIXELS;
+  push.viewport_width = view.viewport.x;
+  push.viewport_height = view.viewport.y;
   push.size_scale = frame.settings.size_scale;
   push.opacity_scale = frame.settings.opacity_scale;
   push.min_opacity = frame.settings.min_opacity;

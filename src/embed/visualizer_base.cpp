@@ -66,7 +66,7 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& v
     const glm::vec2 size(static_cast<float>(options.viewport_width), static_cast<float>(options.viewport_height));
     const bool sized = size.x > 0.0f && size.y > 0.0f;
     draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
-    const draw::DrawView draw_view = draw::DrawView::from(view, projection, sized ? size : glm::vec2(1.0f));
+    const draw::DrawView draw_view = draw::DrawView::from(view, projection, sized ? size : glm::vec2(0.0f));
     const VkDescriptorSet depth = options.scene_depth >= 0 ? scene_depths_[std::size_t(options.scene_depth)]
                                                            : VK_NULL_HANDLE;
     pass_.record(cmd, draw_view, frame, depth);
