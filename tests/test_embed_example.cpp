@@ -117,12 +117,12 @@ bool in_image(float x, float y, float margin) {
   return x >= margin && y >= margin && x < kWidth - margin && y < kHeight - margin;
 }
 
-// Some pixel within 3 px of (x, y) has the indicator's colour: saturated,
+// Some pixel within 6 px of (x, y) has the indicator's colour: saturated,
 // with the source colour's strongest channel strongest. (Spots are at
 // least 16 px across; a neighbour's halo may cover this one's centre.)
 bool shows_colour(const draw::RgbaImage& image, float x, float y, glm::vec3 colour) {
-  for (int dy = -3; dy <= 3; ++dy)
-    for (int dx = -3; dx <= 3; ++dx) {
+  for (int dy = -6; dy <= 6; ++dy)
+    for (int dx = -6; dx <= 6; ++dx) {
       const int px = std::clamp(static_cast<int>(x) + dx, 0, static_cast<int>(kWidth) - 1);
       const int py = std::clamp(static_cast<int>(y) + dy, 0, static_cast<int>(kHeight) - 1);
       const Rgb c = test::pixel(image, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py));

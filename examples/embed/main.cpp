@@ -4,6 +4,7 @@
 // sits between "// >>> soundpaint" and "// <<< soundpaint"; everything else
 // is what the host has anyway. tests/test_embed_example.cpp counts them.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -56,7 +57,9 @@ void run(const Options& options, ValidationLog* log) {
   const CameraMatrices camera = camera_matrices(scene.camera->world, scene.camera->yfov, scene.camera->znear,
                                                 scene.camera->zfar, options.width, options.height);
   // The default configuration puts the listener at the scene's camera.
-  sp::World world = sp::make_world(scene, sp::Config{}).value();
+  sp::Config config;
+  config.display.offscreen_arrows = true;  // arrows for sources heard out of view
+  sp::World world = sp::make_world(scene, config).value();
   const double dt = world.config.dt;  // a frame per simulation step
   // <<< soundpaint
 
@@ -78,6 +81,8 @@ void run(const Options& options, ValidationLog* log) {
                                                 : sp::BackendChoice::Auto;
   const std::unique_ptr<sp::Visualizer> visualizer =
       sp::Visualizer::create(host_vulkan, draw_target, std::move(world), settings).value();
+  visualizer->set_scene_depth(std::array{target.depth_view()}).value();  // spots clipped to the scene's surfaces
+  const sp::DrawOptions draw_options{.viewport_width = target.width(), .viewport_height = target.height(), .scene_depth = 0};
   // <<< soundpaint
   // Declared after the visualizer so that it is destroyed first, waiting for
   // the frames in flight that use the visualizer's buffers.
@@ -94,7 +99,8 @@ void run(const Options& options, ValidationLog* log) {
     target.begin(cmd);
     scene_renderer.draw(cmd, camera.projection * camera.view);
     // >>> soundpaint
-    if (simulate) visualizer->record_draw(cmd, camera.view, camera.projection).value();
+    target.begin_overlays(cmd);
+    if (simulate) visualizer->record_draw(cmd, camera.view, camera.projection, draw_options).value();
     // <<< soundpaint
     target.end(cmd);
     if (frame + 1 == frame_count) target.record_readback(cmd);

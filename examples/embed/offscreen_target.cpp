@@ -40,7 +40,9 @@ OffscreenTarget::OffscreenTarget(const HostContext& host, std::uint32_t width, s
          std::to_string(limit) + " pixels a side");
   color_ = make_attachment(kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                            VK_IMAGE_ASPECT_COLOR_BIT);
-  depth_ = make_attachment(kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  // Sampled too: the indicator draw reads the scene's depth to clip spots.
+  depth_ = make_attachment(kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                           VK_IMAGE_ASPECT_DEPTH_BIT);
 
   const VkDevice device = host.device();
   VkBufferCreateInfo info{};
@@ -110,7 +112,8 @@ void OffscreenTarget::begin(VkCommandBuffer cmd) const {
   barriers[0].dstAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  barriers[1].srcStageMask = depth_stages;
+  // (The previous frame's overlays sampled depth in their fragment shaders.)
+  barriers[1].srcStageMask = depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
   barriers[1].srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   barriers[1].dstStageMask = depth_stages;
   barriers[1].dstAccessMask =
@@ -129,7 +132,7 @@ void OffscreenTarget::begin(VkCommandBuffer cmd) const {
   depth.imageView = depth_.view.get();
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // only this frame's draws need it
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;  // the overlays read it (begin_overlays)
   depth.clearValue.depthStencil = {1.0f, 0};
   VkRenderingInfo rendering{};
   rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
@@ -144,6 +147,42 @@ void OffscreenTarget::begin(VkCommandBuffer cmd) const {
   const VkRect2D scissor{{0, 0}, {width_, height_}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void OffscreenTarget::begin_overlays(VkCommandBuffer cmd) const {
+  vkCmdEndRendering(cmd);
+  // RAW: the scene's depth writes land before the overlays test and sample it.
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  VkImageMemoryBarrier2 to_read = layout_change(depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                                                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                                VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+  to_read.srcStageMask = depth_stages;
+  to_read.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  to_read.dstStageMask = depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  to_read.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+  pipeline_barrier(cmd, &to_read, 1);
+
+  VkRenderingAttachmentInfo color{};
+  color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  color.imageView = color_.view.get();
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  depth.imageView = depth_.view.get();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  VkRenderingInfo rendering{};
+  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  rendering.renderArea = {{0, 0}, {width_, height_}};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &color;
+  rendering.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &rendering);
 }
 
 void OffscreenTarget::end(VkCommandBuffer cmd) const { vkCmdEndRendering(cmd); }

@@ -24,6 +24,11 @@ class OffscreenTarget {
   // Begins rendering (colour cleared dark, depth to 1) with a full-image
   // viewport and scissor set.
   void begin(VkCommandBuffer cmd) const;
+  // Ends the scene's rendering and begins the overlays': colour kept, depth
+  // read-only, so that an overlay can both depth-test against the scene and
+  // sample depth_view() (soundpaint clips its spots to surfaces that way).
+  void begin_overlays(VkCommandBuffer cmd) const;
+  VkImageView depth_view() const { return depth_.view.get(); }
   void end(VkCommandBuffer cmd) const;
   // After end(): copies the colour image to the readback buffer.
   void record_readback(VkCommandBuffer cmd) const;
