@@ -398,3 +398,61 @@ TEST(ResolveLayer, PartialOverrideKeepsThePresetsOtherField) {
 }
 
 }  // namespace
+
+// SPEC 1.5: the display block, every key with a value, then each bad value
+// named by its key path.
+TEST(ConfigDisplay, EveryKeyIsRead) {
+  const Config config = parse_ok(R"({"display": {
+      "palette": "high-contrast", "shapes": {"footsteps": "ring", "drone": "star"},
+      "direction": false, "outline": false, "size_scale": 1.5, "opacity_scale": 0.5,
+      "min_opacity": 0.2, "hide_categories": ["footsteps"], "max_per_category": 30,
+      "offscreen_arrows": false}})");
+  const sp::DisplaySettings& d = config.display;
+  EXPECT_EQ(d.palette, sp::Palette::HighContrast);
+  EXPECT_EQ(d.shapes.at("footsteps"), sp::Shape::Ring);
+  EXPECT_EQ(d.shapes.at("drone"), sp::Shape::Star);
+  EXPECT_FALSE(d.direction);
+  EXPECT_FALSE(d.outline);
+  EXPECT_FLOAT_EQ(d.size_scale, 1.5f);
+  EXPECT_FLOAT_EQ(d.opacity_scale, 0.5f);
+  EXPECT_FLOAT_EQ(d.min_opacity, 0.2f);
+  EXPECT_EQ(d.hide_categories, std::vector<std::string>{"footsteps"});
+  EXPECT_EQ(d.max_per_category, 30u);
+  EXPECT_EQ(d.offscreen_arrows, false);
+}
+
+TEST(ConfigDisplay, DefaultsAreTheSpecs) {
+  const sp::DisplaySettings d = parse_ok("{}").display;
+  EXPECT_EQ(d.palette, sp::Palette::OkabeIto);
+  EXPECT_TRUE(d.shapes.empty());
+  EXPECT_TRUE(d.direction);
+  EXPECT_TRUE(d.outline);
+  EXPECT_EQ(d.size_scale, 1.0f);
+  EXPECT_EQ(d.opacity_scale, 1.0f);
+  EXPECT_EQ(d.min_opacity, 0.0f);
+  EXPECT_TRUE(d.hide_categories.empty());
+  EXPECT_FALSE(d.max_per_category.has_value());
+  EXPECT_FALSE(d.offscreen_arrows.has_value());  // the front end decides
+}
+
+TEST(ConfigDisplay, BadValuesNameTheKey) {
+  expect_error(R"({"display": 3})", {"display"});
+  expect_error(R"({"display": {"palette": "rainbow"}})", {"display.palette", "okabe-ito"});
+  expect_error(R"({"display": {"palette": 1}})", {"display.palette"});
+  expect_error(R"({"display": {"shapes": {"footsteps": "blob"}}})", {"display.shapes.footsteps", "disc"});
+  expect_error(R"({"display": {"shapes": ["disc"]}})", {"display.shapes"});
+  expect_error(R"({"display": {"shapes": {"": "disc"}}})", {"display.shapes"});
+  expect_error(R"({"display": {"direction": "yes"}})", {"display.direction"});
+  expect_error(R"({"display": {"outline": 1}})", {"display.outline"});
+  expect_error(R"({"display": {"size_scale": 0}})", {"display.size_scale"});
+  expect_error(R"({"display": {"size_scale": -1}})", {"display.size_scale"});
+  expect_error(R"({"display": {"opacity_scale": -0.5}})", {"display.opacity_scale"});
+  expect_error(R"({"display": {"min_opacity": 1.5}})", {"display.min_opacity"});
+  expect_error(R"({"display": {"min_opacity": -0.1}})", {"display.min_opacity"});
+  expect_error(R"({"display": {"hide_categories": "footsteps"}})", {"display.hide_categories"});
+  expect_error(R"({"display": {"hide_categories": [3]}})", {"display.hide_categories[0]"});
+  expect_error(R"({"display": {"max_per_category": -1}})", {"display.max_per_category"});
+  expect_error(R"({"display": {"max_per_category": 2.5}})", {"display.max_per_category"});
+  expect_error(R"({"display": {"offscreen_arrows": null}})", {"display.offscreen_arrows"});
+  expect_error(R"({"display": {"colour": "red"}})", {"display.colour"});
+}
