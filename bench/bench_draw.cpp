@@ -93,8 +93,9 @@ Options parse(int argc, char** argv) {
 
 // Indicators as the simulation would leave them: on surfaces (area-weighted
 // over triangles near and in front of the camera), facing the camera's
-// side, energies and intensities spread out, 15 source colours, all born at
-// step 0 so none has faded.
+// side, energies and intensities spread out, spread over the level's
+// sources (their shapes) in 15 colours, all born at step 0 (drawn 6 steps
+// later: faded in, not yet faded out).
 std::vector<sp::Indicator> synthetic_indicators(const sp::World& world, const sp::draw::ViewCamera& camera,
                                                 std::uint32_t count, float radius, std::uint32_t seed) {
   std::vector<const sp::BvhTriangle*> candidates;
@@ -121,8 +122,8 @@ std::vector<sp::Indicator> synthetic_indicators(const sp::World& world, const sp
     ind.energy = 0.2f + 0.8f * unit(rng);
     ind.size = world.config.indicator_size * ind.energy;
     ind.intensity = 0.3f + 0.7f * unit(rng);
-    const std::uint32_t source = i % 15;
-    const float hue = float(source) / 15.0f * 6.0f;
+    const std::uint32_t source = i % std::max<std::uint32_t>(1, std::uint32_t(world.sources.size()));
+    const float hue = float(i % 15) / 15.0f * 6.0f;
     ind.color = glm::clamp(
         glm::vec3(std::abs(hue - 3.0f) - 1.0f, 2.0f - std::abs(hue - 2.0f), 2.0f - std::abs(hue - 4.0f)), 0.0f, 1.0f);
     ind.source_id = source;

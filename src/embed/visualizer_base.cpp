@@ -63,7 +63,10 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& v
       vkCmdSetScissor(cmd, 0, 1, area);
     }
     const World& world = scene_.world();
-    const glm::vec2 size(static_cast<float>(options.viewport_width), static_cast<float>(options.viewport_height));
+    // No size given: the area's extent, when there is an area (visualizer.h).
+    glm::vec2 size(static_cast<float>(options.viewport_width), static_cast<float>(options.viewport_height));
+    if (area != nullptr && options.viewport_width == 0 && options.viewport_height == 0)
+      size = glm::vec2(static_cast<float>(area->extent.width), static_cast<float>(area->extent.height));
     const bool sized = size.x > 0.0f && size.y > 0.0f;
     draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
     const draw::DrawView draw_view = draw::DrawView::from(view, projection, sized ? size : glm::vec2(0.0f));
