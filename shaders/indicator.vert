@@ -24,8 +24,12 @@ layout(location = 5) flat out vec3 out_normal;  // the surface's unit normal
 const vec2 kCorners[SP_INDICATOR_QUAD_VERTICES] =
     vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
 
-// Room around the shape for the anti-aliased edge and the halo, in radii.
-const float kMargin = 0.45;
+// Room around the shape for the anti-aliased edge and the halo: 4.5 pixels
+// on screen (two 1.5 px rings, half a pixel of edge, the tail's round end),
+// or a share of the radius when the viewport's size is unknown. On a
+// software rasteriser the pass's cost is its area.
+const float kMarginPixels = 4.5;
+const float kMarginRadii = 0.45;
 // Tail length, in radii, when the sound grazes the surface; head-on it has
 // no direction along the surface and no tail.
 const float kMaxTail = 1.6;
@@ -85,11 +89,15 @@ void main() {
   float radius = 0.5 * ind.size * push.size_scale * (direct ? kDirectSize : 1.0);
   vec4 centre_clip = push.view_proj * vec4(ind.position, 1.0);
   float distance = max(centre_clip.w, 1.0e-3);
-  if (push.pixel_scale > 0.0) radius = max(radius, 0.5 * SP_SHAPE_MIN_PIXELS * distance / push.pixel_scale);
+  float margin = kMarginRadii;
+  if (push.pixel_scale > 0.0) {
+    radius = max(radius, 0.5 * SP_SHAPE_MIN_PIXELS * distance / push.pixel_scale);
+    margin = min(kMarginRadii, kMarginPixels * distance / (push.pixel_scale * radius));
+  }
 
   vec2 corner = kCorners[gl_VertexIndex];
   // x from the tail's end to past the head, y across: both with the margin.
-  vec2 local = vec2(corner.x < 0.0 ? -(1.0 + tail) - kMargin : 1.0 + kMargin, corner.y * (1.0 + kMargin));
+  vec2 local = vec2(corner.x < 0.0 ? -(1.0 + tail) - margin : 1.0 + margin, corner.y * (1.0 + margin));
   vec3 anchor = ind.position + n * SP_INDICATOR_LIFT;
   vec3 p = anchor + (tangent * local.x + bitangent * local.y) * radius;
   out_local = local;

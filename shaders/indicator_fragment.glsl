@@ -6,6 +6,10 @@
 // in the air past an edge, none under a wall in the next room.
 #include "indicator_bindings.glsl"
 
+// Depth is tested before shading: the pass writes no depth, so a discard
+// cannot change what the test sees, and spots behind walls cost nothing.
+layout(early_fragment_tests) in;
+
 layout(std430, push_constant) uniform Push { IndicatorPush push; };
 
 layout(location = 0) in vec2 in_local;
