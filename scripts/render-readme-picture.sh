@@ -13,5 +13,5 @@ cmake --build "$build" -j"$(nproc)" --target soundpaint_cli
 mkdir -p docs
 # The CPU backend is the reference (the GPU backend gives the same indicators
 # on lavapipe); drawing uses Vulkan either way.
-"$build/soundpaint" render scenes/level.gltf --backend cpu --steps 30 --seed 1 --width 1280 --height 720 \
+"$build/soundpaint" render scenes/level.gltf --backend cpu --steps 60 --seed 1 --width 1280 --height 720 \
   --out docs/level.png
