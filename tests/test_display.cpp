@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <set>
@@ -482,6 +483,63 @@ TEST_P(DisplayBothBackends, SpotsReachTheirLifetimeAtTheDefaultBudget) {
     // runs out is left out whole (sp_admission.h).
     for (auto [step, count] : per_step) EXPECT_GE(count, quota * 2 / 3) << "step " << step << ", ring " << capacity;
   }
+}
+
+// WCAG 2.3.1: nothing flashes more than three times a second. A config
+// asking for spots that live 0.05 s still shows each for a third of a
+// second, fading out over it, never popping on and off within a frame or two.
+TEST_F(Display, ShortLifetimesNeverFlashFasterThanThreeTimesASecond) {
+  Scene scene;
+  test::add_box(scene, {-10, -0.3f, -10}, {10, 0, 10}, "concrete");
+  scene.sources = {source({0, 1, 0}, {1.0f, 0.05f, 0.05f}, "test tone")};
+  Config config;
+  config.listener_position = glm::vec3(0, 1, 0);
+  config.indicator_size = 1.0f;
+  config.indicator_lifetime = 0.05f;  // 3 steps at 60 Hz
+  const World world = make_world(scene, config).value();
+  const draw::ViewCamera view = camera(world, {0, 6, 0.01f}, {0, 0, 0});
+  const std::vector<Indicator> one = {spot({0, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f)};
+  // Born at step 0; seen at 0.1 s and 0.25 s, both past the 0.05 s asked.
+  const std::size_t early = blob(draw(world, view, one, 7), is_red).pixels;
+  auto reddish = [](Rgb c) { return c.r > c.g + 25 && c.r > c.b + 25; };  // a faded red over grey
+  const std::size_t late = blob(draw(world, view, one, 16), reddish).pixels;
+  EXPECT_GT(early, 100u) << "a spot must stay at least 1/3 s";
+  EXPECT_GT(late, 0u) << "still fading out at 0.25 s";
+  EXPECT_EQ(blob(draw(world, view, one, 22), reddish).pixels, 0u) << "gone after 1/3 s";
+}
+
+// display never changes the simulation (SPEC 1.5): every field of every
+// indicator is the same with any display settings, but the colour of a
+// source without its own, which follows the palette.
+TEST(DisplaySimulation, DisplayChangesNothingButThePalettesColour) {
+  Scene scene = two_sources();
+  scene.sources[1].color.reset();  // the alarm takes its palette colour
+  DisplaySettings loud;
+  loud.palette = Palette::HighContrast;
+  loud.size_scale = 3.0f;
+  loud.hide_categories = {"footsteps"};
+  loud.max_per_category = 5;
+  loud.direction = false;
+  auto plain = create_cpu_simulator(make_world(scene, open_config({})).value()).value();
+  auto shown = create_cpu_simulator(make_world(scene, open_config(loud)).value()).value();
+  std::size_t compared = 0, recoloured = 0;
+  for (int n = 0; n < 3; ++n) {
+    ASSERT_TRUE(plain->step().ok());
+    ASSERT_TRUE(shown->step().ok());
+    const std::vector<Indicator> a = plain->last_step_indicators().value();
+    const std::vector<Indicator> b = shown->last_step_indicators().value();
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      Indicator without_colour = b[i];
+      without_colour.color = a[i].color;
+      ASSERT_EQ(std::memcmp(&without_colour, &a[i], sizeof(Indicator)), 0) << "indicator " << i << " of step " << n;
+      recoloured += a[i].source_id == 1 && a[i].color != b[i].color;
+      EXPECT_TRUE(a[i].source_id == 1 || a[i].color == b[i].color) << "a source's own colour always wins";
+      compared += 1;
+    }
+  }
+  EXPECT_GT(compared, 200u);
+  EXPECT_GT(recoloured, 50u) << "the palette recolours the source without its own colour";
 }
 
 }  // namespace
