@@ -16,8 +16,7 @@ layout(location = 3) flat in uint in_shading;
 
 layout(location = 0) out vec4 out_color;
 
-// Must match the clear colour in src/draw/scene_pass.cpp (kClearColor).
-const vec3 kFogColor = vec3(0.02, 0.022, 0.03);
+const vec3 kFogColor = vec3(SP_CLEAR_RGB);
 
 void main() {
   vec3 to_eye = push.eye - in_world;

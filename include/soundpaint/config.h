@@ -71,6 +71,8 @@ struct Config {
 };
 
 // Largest accepted values (inclusive); larger values are configuration errors.
+// Upper bound for max_bounces: the GPU records 2 * max_bounces + 1
+// wavefront iterations a step, so this bounds its command buffer's size.
 inline constexpr std::uint32_t kMaxBouncesLimit = 64;
 inline constexpr std::uint32_t kMaxRayBudget = 1u << 24;
 inline constexpr std::uint32_t kMaxIndicatorsLimit = 1u << 24;

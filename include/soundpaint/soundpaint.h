@@ -33,8 +33,9 @@
  *   ("sources") given at creation, and can be added, changed, moved, played,
  *   emitted once and removed at run time through the owner's sp_sound_scene
  *   (sp_simulation_scene, sp_visualizer_scene); every change applies from
- *   the next step on. Moving parts (sp_scene_create_with_instances, glTF)
- *   are placed the same way (sp_sound_scene_set_instance_transform).
+ *   the next step on. Moving parts (sp_scene_create_with_instances; a
+ *   loaded glTF file has none) are placed the same way
+ *   (sp_sound_scene_set_instance_transform).
  * - The visualizer (simulation recorded into, and indicators drawn by, the
  *   host's own Vulkan command buffers) is in soundpaint_vulkan.h, so that
  *   engines without Vulkan never need Vulkan headers.

@@ -10,6 +10,8 @@
 // Vertices of one indicator quad (two triangles); the compute pass writes the
 // same count into the VkDrawIndirectCommand it keeps (Control.draw_vertex_count).
 #define SP_INDICATOR_QUAD_VERTICES 6u
+// Linear RGB a frame is cleared to; the scene's distance fog fades towards it.
+#define SP_CLEAR_RGB 0.02f, 0.022f, 0.03f
 // Metres an indicator floats above its surface along its normal: enough to
 // win the depth test against that surface with a D32 buffer out to ~100 m,
 // too little to be seen as a gap.

@@ -11,9 +11,6 @@
 #define SP_BVH_MAX_DEPTH 32
 // Compute workgroup width: a multiple of every common subgroup size (32/64).
 #define SP_WORKGROUP_SIZE 64
-// Upper bound for max_bounces: the GPU records 2 * max_bounces + 2 wavefront
-// iterations per step, so this bounds the command buffer size.
-#define SP_MAX_BOUNCES_LIMIT 64
 // Surface offset (metres) applied after reflections and exits, and the near
 // limit of the backcast, so a ray never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "draw/graphics_pipeline.h"
+#include "sp_draw_types.h"
 #include "draw/scene_mesh.h"
 #include "draw/view_camera.h"
 #include "vk/buffer.h"
@@ -18,7 +19,7 @@ namespace sp::draw {
 class ScenePass {
  public:
   // Linear RGB the frame is cleared to; the shader's fog fades towards it.
-  static constexpr float kClearColor[4] = {0.02f, 0.022f, 0.03f, 1.0f};
+  static constexpr float kClearColor[4] = {SP_CLEAR_RGB, 1.0f};
 
   // Uploads `mesh` (waits for the upload). Throws sp::Exception.
   ScenePass(vk::Context& context, const SceneMesh& mesh, VkFormat color_format, VkFormat depth_format);
