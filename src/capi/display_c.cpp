@@ -164,8 +164,12 @@ void sp_display_settings_init(sp_display_settings* settings) noexcept {
   out.size_scale = defaults.size_scale;
   out.opacity_scale = defaults.opacity_scale;
   out.min_opacity = defaults.min_opacity;
-  out.max_per_category = defaults.max_per_category.value_or(0);  // 0 stands for no cap
-  out.offscreen_arrows = defaults.offscreen_arrows ? (*defaults.offscreen_arrows ? 1 : 0) : -1;
+  // Both optionals are empty by default (no cap; the front end decides the
+  // arrows). Not read from `defaults`: GCC's -Wmaybe-uninitialized misfires
+  // on an empty optional's payload in sanitizer builds. The C API test
+  // compares these with sp::DisplaySettings{}, so a new default shows.
+  out.max_per_category = 0;  // 0 stands for no cap
+  out.offscreen_arrows = -1;
   // The default shape map and hidden list are empty (the built-ins apply).
   out.hide_categories = nullptr;
   out.hide_category_count = 0;
