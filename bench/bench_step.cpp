@@ -1,7 +1,8 @@
-// Step benchmark, the paper's Figure 6 workload by default: ms per step
-// (median and p99 of wall time, and GPU timestamps), casts per second,
-// indicators per step and the overhead over the same frame loop without
-// soundpaint, for each backend and ray budget on one scene.
+// Step benchmark, the paper's Figure 6 workload by default (section 5.2;
+// docs/model.md#the-paper): ms per step (median and p99 of wall time, and GPU
+// timestamps), casts per second, indicators per step and the overhead over the
+// same frame loop without soundpaint, for each backend and ray budget on one
+// scene.
 //
 // The frame loop (bench_common.h): each frame moves the listener along a
 // slow circle (set_listener) and runs one step. The baseline is the same

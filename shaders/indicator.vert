@@ -83,9 +83,9 @@ void main() {
   vec3 bitangent = cross(n, tangent);
   float tail = (push.flags & SP_DRAW_DIRECTION) != 0u ? kMaxTail * min(along_length, 1.0) : 0.0;
 
-  // Radius: the SPEC's size (a diameter) scaled, but never under
-  // SP_SHAPE_MIN_PIXELS across on screen, where a shape stops being
-  // recognisable (when the viewport's size is known).
+  // Radius: the indicator's size (a diameter, docs/model.md#indicators) scaled,
+  // but never under SP_SHAPE_MIN_PIXELS across on screen, where a shape stops
+  // being recognisable (when the viewport's size is known).
   float radius = 0.5 * ind.size * push.size_scale * (direct ? kDirectSize : 1.0);
   vec4 centre_clip = push.view_proj * vec4(ind.position, 1.0);
   float distance = max(centre_clip.w, 1.0e-3);

@@ -1,8 +1,8 @@
 #version 460
-// Stage (b)/(d), ResolvingPenetration rays: the matter query that replaces
-// the paper's backcast -- the nearest faces behind p_in, then where the ray
-// leaves matter (sp_matter.h) -- one per resolving ray of the queue (its
-// back, QueueArgs).
+// Stage (b)/(d), ResolvingPenetration rays: the matter query that replaces the
+// paper's backcast (docs/model.md#matter-where-a-penetrating-ray-leaves) -- the
+// nearest faces behind p_in, then where the ray leaves matter (sp_matter.h) --
+// one per resolving ray of the queue (its back, QueueArgs).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_traverse.h"

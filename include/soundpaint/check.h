@@ -1,7 +1,8 @@
 // Does a level suit the ray model? What `soundpaint check` reports: the
 // geometry facts that decide whether sound can pass through walls
-// (docs/model.md, "Matter"), and a short probe simulation that counts how
-// often a ray that penetrates a surface finds no way out of matter.
+// (docs/model.md#what-the-level-needs-and-soundpaint-check), and a short probe
+// simulation that counts how often a ray that penetrates a surface finds no way
+// out of matter.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
-// Simulation configuration (SPEC section 2) and acoustic layer presets.
-// Units: metres, seconds; energies are in units of a source's loudness E0.
+// Simulation configuration (contract: README.md, "Configuration (JSON)") and
+// acoustic layer presets. Units: metres, seconds; energies are in units of a
+// source's loudness E0.
 #pragma once
 
 #include <cstdint>
@@ -17,23 +18,24 @@
 
 namespace sp {
 
-// Acoustic properties of a collision layer (paper: rho_ref, alpha_layer).
+// Acoustic properties of a collision layer (docs/model.md's symbols: rho_ref,
+// alpha_layer).
 struct LayerProperties {
   float reflect_probability = 0.8f;  // rho_ref in [0, 1]: chance a hit reflects rather than penetrates
   float attenuation = 2.0f;          // alpha_layer >= 0: energy lost per metre travelled inside the material
   // t >= 0, metres. 0: the layer's triangles bound closed solids. > 0: each
   // triangle is a thin sheet of this thickness (a pane, a cloth, a door made
-  // of one quad), two-sided, crossed on the spot (docs/model.md, "Sheets").
+  // of one quad), two-sided, crossed on the spot (docs/model.md#sheets).
   float sheet_thickness = 0.0f;
 };
 
-// A sound source (SPEC 1.1). It plays at time t when t >= phase and
-// fmod(t - phase, interval) < duration; the defaults make it play always.
+// A sound source (docs/model.md#registry). It plays at time t when t >= phase
+// and fmod(t - phase, interval) < duration; the defaults make it play always.
 struct SourceDesc {
   std::string name;                    // node name for scene sources, "" otherwise
   glm::vec3 position{0.0f};            // metres, world space
-  // Linear RGB, each in [0, 1]; empty: its category's colour in the
-  // display palette (SPEC 1.4, include/soundpaint/display.h).
+  // Linear RGB, each in [0, 1]; empty: its category's colour in the display
+  // palette (docs/model.md#indicators, include/soundpaint/display.h).
   std::optional<glm::vec3> color;
   std::string category = "sound";      // free text, e.g. "footsteps"
   float max_distance = 30.0f;          // D_max == R_max, metres, >= 0
@@ -49,9 +51,9 @@ enum class BudgetWeighting { Even, Proximity };
 struct Config {
   float scan_radius = 50.0f;                 // R_scan, metres
   std::uint32_t ray_budget = 500;            // new rays per step, all sources together
-  // Ring-buffer capacity, > 0. Not the paper's 20,000: the ring admits
-  // capacity * dt / lifetime spots a step, the most informative first, and
-  // 4,000 (67 a step at 60 Hz) keeps the strongest, which cluster where
+  // Ring-buffer capacity, > 0. Not the paper's prototype's 20,000: the ring
+  // admits capacity * dt / lifetime spots a step, the most informative first,
+  // and 4,000 (67 a step at 60 Hz) keeps the strongest, which cluster where
   // each sound is, rather than carpeting every wall (docs/accessibility.md).
   std::uint32_t max_indicators = 4000;
   BudgetWeighting budget_weighting = BudgetWeighting::Even;
@@ -67,7 +69,7 @@ struct Config {
   std::map<std::string, LayerProperties> layers;  // overrides of presets, by layer name
   std::optional<glm::vec3> listener_position;     // overrides the scene's camera
   std::vector<SourceDesc> sources;                // added after the scene's sources
-  DisplaySettings display;                        // how indicators are drawn (SPEC 1.5)
+  DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
 };
 
 // Largest accepted values (inclusive); larger values are configuration errors.

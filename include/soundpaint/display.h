@@ -56,8 +56,9 @@ struct BuiltinCategory {
 };
 std::span<const BuiltinCategory> builtin_categories();
 
-// The config's `display` object (SPEC 1.5). Units: size_scale and
-// opacity_scale multiply; min_opacity is an opacity in [0, 1].
+// The config's `display` object (contract: README.md, "Cues a player can read";
+// docs/accessibility.md, section 4). Units: size_scale and opacity_scale
+// multiply; min_opacity is an opacity in [0, 1].
 struct DisplaySettings {
   Palette palette = Palette::OkabeIto;
   std::map<std::string, Shape> shapes;        // category -> shape, over the built-in map

@@ -1,6 +1,7 @@
-// Writers for the command line's outputs (SPEC 4): the indicator CSV and the
-// stats JSON. Files are written to a temporary name beside the target and
-// renamed on commit, so a failure never leaves a half-written file.
+// Writers for the command line's outputs (contract: README.md, "Command line"):
+// the indicator CSV and the stats JSON. Files are written to a temporary name
+// beside the target and renamed on commit, so a failure never leaves a
+// half-written file.
 #pragma once
 
 #include <filesystem>
@@ -44,7 +45,7 @@ struct StepTimings {
 double median(std::vector<double> values);
 double percentile(std::vector<double> values, double p);  // p in [0, 100], nearest rank
 
-// The stats JSON object of SPEC 4 as text.
+// The stats JSON object (contract: README.md, "Command line") as text.
 std::string stats_json(const World& world, const SimulationStats& stats, const char* backend_name,
                        const std::string& device, const StepTimings& timings);
 

@@ -1,5 +1,6 @@
-// Scenes: a glTF 2.0 level flattened into one world-space triangle soup with
-// a layer per triangle, plus its sound sources and listener (SPEC section 3).
+// Scenes: a glTF 2.0 level flattened into one world-space triangle soup with a
+// layer per triangle, plus its sound sources and listener (contract: README.md,
+// "Authoring scenes").
 #pragma once
 
 #include <cstdint>

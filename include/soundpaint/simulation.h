@@ -19,7 +19,8 @@
 
 namespace sp {
 
-// An indicator (SPEC 1.4). Category is sources[source_id].category.
+// An indicator (docs/model.md#indicators). Category is
+// sources[source_id].category.
 using Indicator = shader::Indicator;
 
 // Everything a backend needs, resolved once: geometry, per-layer acoustics,
@@ -59,14 +60,15 @@ struct World {
 // nor config.listener), invalid source fields.
 Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings = {});
 
-// Counters of one layer (SPEC 4, --stats).
+// Counters of one layer (--stats; contract: README.md, "Command line").
 struct LayerCounters {
   std::uint64_t hits = 0;             // every surface hit on this layer
   std::uint64_t reflections = 0;
   std::uint64_t penetrations = 0;     // every decision to penetrate (backcast misses included)
   std::uint64_t backcast_misses = 0;  // penetrations that found no way out of matter within W_max
-  // Rays in air that struck the back of a face (docs/model.md, "Matter"):
-  // a leak or winding that disagrees with the geometry. Counted in hits too.
+  // Rays in air that struck the back of a face: a leak or winding that
+  // disagrees with the geometry (docs/model.md#the-back-of-a-face-struck-from-air).
+  // Counted in hits too.
   std::uint64_t back_face_hits = 0;
 };
 
@@ -265,7 +267,7 @@ struct SimulatorSettings {
 Result<std::unique_ptr<Simulator>> create_simulator(World world, const SimulatorSettings& settings,
                                                     std::string* fallback_reason = nullptr);
 
-// Opacity of an indicator of the given age (SPEC 1.4).
+// Opacity of an indicator of the given age (docs/model.md#indicators).
 float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds);
 
 }  // namespace sp

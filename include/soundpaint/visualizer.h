@@ -130,9 +130,9 @@ class Visualizer {
   virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
                                    const DrawOptions& options) = 0;
 
-  // How the indicators are drawn (SPEC 1.5; initially the world's
-  // config.display). Checked (InvalidConfig naming the key); applies from
-  // the next record_simulation. The palette colours sources without their
+  // How the indicators are drawn (docs/model.md#the-display; initially the
+  // world's config.display). Checked (InvalidConfig naming the key); applies
+  // from the next record_simulation. The palette colours sources without their
   // own colour from their next indicators on.
   virtual Result<bool> set_display(const DisplaySettings& settings) = 0;
   virtual const DisplaySettings& display() const = 0;

@@ -1,14 +1,15 @@
 // Matter: where a penetrating ray leaves the solids it entered, shared by
-// GLSL and C++ (docs/model.md, "Matter").
+// GLSL and C++ (docs/model.md#matter-where-a-penetrating-ray-leaves).
 //
 // The paper's backcast takes the first surface behind the entry point as the
-// way out. Real levels are built from solids that touch and overlap (a wall
-// standing on a floor slab, brushes stacked by a level editor, a trim laid on
-// a floor) and from open render meshes, where that surface is often the face
-// of the next solid. Here the ray counts what it crosses instead: a face
-// whose front (counter-clockwise side) faces against the ray puts it inside
-// one more solid, a face whose front faces along the ray takes it out of one,
-// and it leaves matter at the first face after which it is inside none.
+// way out (docs/model.md#why-the-papers-backcast-fails-on-real-levels). Real
+// levels are built from solids that touch and overlap (a wall standing on a
+// floor slab, brushes stacked by a level editor, a trim laid on a floor) and
+// from open render meshes, where that surface is often the face of the next
+// solid. Here the ray counts what it crosses instead: a face whose front
+// (counter-clockwise side) faces against the ray puts it inside one more solid,
+// a face whose front faces along the ray takes it out of one, and it leaves
+// matter at the first face after which it is inside none.
 //
 // Buffers: C++ passes `const BvhTriangle* bvh_triangles, const
 // LayerAcoustics* layers` through SP_MATTER_ARGS_DECL; GLSL declares storage

@@ -48,7 +48,8 @@ SP_INLINE float sp_unit_float(uint bits) {
   return float(bits >> 8u) * (1.0f / 16777216.0f);
 }
 
-// The decision variable u of SPEC 1.3 for a ray's interaction `interaction`.
+// The decision variable u (docs/model.md#propagation) for a ray's interaction
+// `interaction`.
 SP_INLINE float sp_decision_random(uint seed, uint step, uint ray_index, uint interaction) {
   return sp_unit_float(sp_pcg4d(seed, step, ray_index, interaction).x);
 }

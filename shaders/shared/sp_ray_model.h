@@ -1,8 +1,8 @@
-// The paper's ray model (docs/model.md) as pure functions over RayState,
-// shared by GLSL and C++. Each wavefront iteration gives a live ray exactly
-// one cast: Active rays cast forward, ResolvingPenetration rays query the
-// matter behind their entry point (sp_matter.h).
-// Paper: "Diegetic Sound Visualization", sections 4.2-4.4.
+// The paper's ray model (docs/model.md#propagation) as pure functions over
+// RayState, shared by GLSL and C++. Each wavefront iteration gives a live ray
+// exactly one cast: Active rays cast forward, ResolvingPenetration rays query
+// the matter behind their entry point (sp_matter.h). Paper: sections 4.2-4.4
+// (docs/model.md#the-paper).
 #ifndef SP_RAY_MODEL_H
 #define SP_RAY_MODEL_H
 

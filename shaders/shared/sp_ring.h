@@ -1,18 +1,18 @@
 // The indicator ring's rules, shared by GLSL and C++: how old an indicator
 // is, how opaque, and which of a step's indicators the ring admits
-// (docs/model.md, "The ring: spots that live out their lifetime").
+// (docs/model.md#the-ring-spots-that-live-out-their-lifetime).
 //
-// A step makes far more indicators than the ring can show for a whole
-// lifetime: at 500 rays a step, about 4,000 against a ring of 20,000, which
-// the paper's newest-first ring would overwrite within 5 steps, so spots
-// would live a twelfth of their second and never fade. Instead, each step
-// admits at most `quota` = ceil(capacity * dt / lifetime) indicators, so the
-// ring turns over once per lifetime and every admitted spot lives it out;
-// the most informative are kept: a share each for direct sound (first
+// A step makes far more indicators than the ring can show for a whole lifetime:
+// at 500 rays a step, about 4,000 against a ring of 20,000, which a ring that
+// overwrites its oldest (the paper's prototype's) would overwrite within 5
+// steps, so spots would live a twelfth of their second and never fade. Instead,
+// each step admits at most `quota` = ceil(capacity * dt / lifetime) indicators,
+// so the ring turns over once per lifetime and every admitted spot lives it
+// out; the most informative are kept: a share each for direct sound (first
 // hits), sound through walls and reflections, and within each by energy
-// relative to the source's loudness (E / E0, so a quiet or distant
-// source's strongest spots compete with a loud one's on equal terms). Every indicator still reaches the CSV
-// and the stats: admission only decides what is drawn.
+// relative to the source's loudness (E / E0, so a quiet or distant source's
+// strongest spots compete with a loud one's on equal terms). Every indicator
+// still reaches the CSV and the stats: admission only decides what is drawn.
 #ifndef SP_RING_H
 #define SP_RING_H
 
@@ -44,7 +44,7 @@ SP_INLINE float sp_indicator_age(uint now, uint birth, float dt) {
   return float(steps) * dt;
 }
 
-// SPEC 1.4: opacity at age a is I * max(0, 1 - a / lifetime).
+// Opacity at age a is I * max(0, 1 - a / lifetime) (docs/model.md#indicators).
 SP_INLINE float sp_indicator_opacity(float intensity, float age, float lifetime) {
   return intensity * max(0.0f, 1.0f - age / lifetime);
 }

@@ -118,7 +118,8 @@ SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
 }
 
 // Is (t, scene_index) a better hit than (best_t, best_scene)? Closest wins;
-// equal distances go to the triangle first in scene order (SPEC 1.3).
+// equal distances go to the triangle first in scene order
+// (docs/model.md#closest-hit).
 SP_INLINE bool sp_better_hit(float t, uint scene_index, float best_t, uint best_scene) {
   return t < best_t || (t == best_t && scene_index < best_scene);
 }

@@ -17,7 +17,7 @@
 // Faces closer than this along a ray (metres) are crossed together: where two
 // solids touch, the leaving face of one and the entering face of the next
 // lie at the same distance up to rounding, and that plane must never be taken
-// for a way out of matter (docs/model.md, "Matter"). 1 mm is far above the
+// for a way out of matter (docs/model.md#the-rules). 1 mm is far above the
 // rounding of hit distances in a level a few hundred metres across and far
 // below any gap that matters to sound.
 #define SP_CONTACT_TOLERANCE 1.0e-3f
@@ -37,12 +37,12 @@
 // A distance larger than any scene; used instead of +inf, which GLSL lacks.
 #define SP_FAR 1.0e30f
 
-// Ray states (SPEC 1.3).
+// Ray states (docs/model.md#propagation).
 #define SP_RAY_DEAD 0u
 #define SP_RAY_ACTIVE 1u
 #define SP_RAY_RESOLVING 2u
 
-// Indicator kinds (SPEC 1.4).
+// Indicator kinds (docs/model.md#indicators).
 #define SP_INDICATOR_HIT 0u
 #define SP_INDICATOR_EXIT 1u
 
@@ -96,7 +96,8 @@ struct BvhTriangle {
   uint pad0;
 };
 
-// Acoustic properties of one layer (paper: rho_ref, alpha_layer).
+// Acoustic properties of one layer (docs/model.md's symbols: rho_ref,
+// alpha_layer).
 struct LayerAcoustics {
   float reflect_probability;  // probability of reflecting, in [0, 1]
   float attenuation;          // energy lost per metre inside the material
@@ -145,7 +146,7 @@ struct RayState {
   float max_distance; // D_max of its source
   float loudness;     // E0 of its source
   uint entry_triangle;  // leaf-order index of the entry face while ResolvingPenetration
-  uint diffractions;    // times the ray turned at an edge (docs/model.md, "Diffraction")
+  uint diffractions;    // times the ray turned at an edge (docs/model.md#diffraction)
   uint pad0;
   uint pad1;
 };

@@ -1,5 +1,5 @@
-// soundpaint: command-line front end (SPEC 4). Parses, calls the library,
-// reports; the work lives in the library.
+// soundpaint: command-line front end (contract: README.md, "Command line").
+// Parses, calls the library, reports; the work lives in the library.
 #include <cstdio>
 #include <exception>
 #include <string>

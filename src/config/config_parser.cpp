@@ -1,6 +1,7 @@
-// JSON configuration (SPEC section 2) -> sp::Config, with strict validation:
-// unknown keys, wrong types, non-finite numbers and out-of-range values are
-// errors whose one-line message names the origin and the key path.
+// JSON configuration (contract: README.md, "Configuration (JSON)") ->
+// sp::Config, with strict validation: unknown keys, wrong types, non-finite
+// numbers and out-of-range values are errors whose one-line message names the
+// origin and the key path.
 #include <cstdint>
 #include <filesystem>
 #include <optional>

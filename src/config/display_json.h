@@ -1,4 +1,5 @@
-// The config's `display` object (SPEC 1.5) -> sp::DisplaySettings.
+// The config's `display` object (contract: README.md, "Cues a player can read";
+// docs/accessibility.md, section 4) -> sp::DisplaySettings.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -1,11 +1,12 @@
 // Built-in acoustic layer presets and the lookup of a layer's properties.
 //
-// Each preset gives the paper's rho_ref (chance that a hit reflects rather
-// than penetrates) and alpha_layer (energy lost per metre travelled inside the
-// material). Energies are in units of a source's loudness E0 = 1; rays die
-// below min_energy (default 0.05); game walls are typically 0.1-0.3 m thick.
-// The values are plausible starting points for games, ordered by how hard and
-// dense the material is, not measured absorption data.
+// Each preset gives rho_ref (the chance that a hit reflects rather than
+// penetrates) and alpha_layer (energy lost per metre travelled inside the
+// material), the paper's symbols (docs/model.md). Energies are in units of a
+// source's loudness E0 = 1; rays die below min_energy (default 0.05); game
+// walls are typically 0.1-0.3 m thick. The values are plausible starting points
+// for games, ordered by how hard and dense the material is, not measured
+// absorption data.
 #include <cctype>
 #include <map>
 #include <string>

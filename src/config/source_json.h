@@ -1,4 +1,5 @@
-// Reading a sound source (SPEC 1.1) from JSON. Shared by the config's
+// Reading a sound source (contract: README.md, "Configuration (JSON)",
+// `sources`; docs/model.md#registry) from JSON. Shared by the config's
 // "sources" array and, if it wishes, the scene loader's `extras.sound_source`.
 #pragma once
 

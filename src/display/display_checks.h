@@ -7,7 +7,7 @@
 namespace sp {
 
 // Throws sp::Exception(InvalidConfig) naming the key ("display.size_scale")
-// when a setting is out of its range (SPEC 1.5).
+// when a setting is out of its range (docs/accessibility.md, section 4).
 void check_display_settings(const DisplaySettings& settings);
 
 }  // namespace sp

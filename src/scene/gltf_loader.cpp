@@ -1,6 +1,6 @@
 // sp::load_scene: flattens the default scene of a glTF 2.0 file into one
 // world-space triangle list with a layer per triangle, and collects its sound
-// sources and first camera (SPEC section 3).
+// sources and first camera (contract: README.md, "Authoring scenes").
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -97,9 +97,9 @@ class SceneAssembler {
   }
 
   // Depth-first, pre-order, children in listed order: the order that numbers
-  // the sources (SPEC 3). An explicit stack, so that a deep chain of nodes
-  // cannot overflow the call stack; a node reached twice (a cycle, or a
-  // child shared by two parents, both invalid glTF) is an error.
+  // the sources (README.md, "Authoring scenes"). An explicit stack, so that a
+  // deep chain of nodes cannot overflow the call stack; a node reached twice (a
+  // cycle, or a child shared by two parents, both invalid glTF) is an error.
   void visit(const std::vector<int>& roots, const std::string& roots_owner) {
     struct Pending {
       int node;

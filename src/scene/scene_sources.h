@@ -1,7 +1,7 @@
 // Private to the scene loader: acoustic data attached to glTF nodes.
 //
 //   node.extras.acoustic_layer   string: the layer of the node's triangles
-//   node.extras.sound_source     object with the SPEC 1.1 source fields
+//   node.extras.sound_source     object with a config source's fields
 //                                (color, category, max_distance, loudness,
 //                                duration, interval, phase); strict: unknown
 //                                keys, wrong types and out-of-range values fail

@@ -1,7 +1,8 @@
-// The indicator ring of SPEC 1.4 and its admission rule (shaders/shared/
-// sp_ring.h, docs/model.md "The ring"): each step admits at most its quota
-// of the step's indicators, the most informative first, so that admitted
-// spots live out their lifetime; the oldest slots are overwritten.
+// The indicator ring and its admission rule (shaders/shared/sp_ring.h,
+// docs/model.md#the-ring-spots-that-live-out-their-lifetime): each step admits
+// at most its quota of the step's indicators, the most informative first, so
+// that admitted spots live out their lifetime; the oldest slots are
+// overwritten.
 #pragma once
 
 #include <cstdint>

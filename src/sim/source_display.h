@@ -1,7 +1,7 @@
-// What the display needs of each source, kept in the World beside the
-// source: its category's index (display/categories.h numbering: built-ins
-// first, then first appearance) and its colour: its own when it sets one,
-// else its category's colour in the config's palette (SPEC 1.4).
+// What the display needs of each source, kept in the World beside the source:
+// its category's index (display/categories.h numbering: built-ins first, then
+// first appearance) and its colour: its own when it sets one, else its
+// category's colour in the config's palette (docs/model.md#indicators).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,6 @@
-// Source registry and ray distribution (SPEC 1.1-1.2): which sources emit in
-// a step and how many rays each gets. Both backends use this same table.
+// Source registry and ray distribution (docs/model.md#registry,
+// docs/model.md#distribution): which sources emit in a step and how many rays
+// each gets. Both backends use this same table.
 #pragma once
 
 #include <cstdint>

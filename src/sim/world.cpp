@@ -112,7 +112,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
     for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
     // Which triangles form one piece of surface: the matter rules cross a
-    // piece met through a shared edge once (docs/model.md, "Matter").
+    // piece met through a shared edge once (docs/model.md#the-rules).
     MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, scene.layer_names.size());
     world.bvh = build_bvh(scene.vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
     if (!scene.instance_names.empty()) {
