@@ -9,6 +9,7 @@
 
 #include "soundpaint/output.h"
 #include "support/run_command.h"
+#include "support/vulkan_environment.h"
 
 namespace sp {
 namespace {
@@ -202,7 +203,7 @@ TEST(Cli, GpuBackendRunsCleanUnderTheValidationLayer) {
                            "/two_rooms.gltf --backend gpu --steps 5 --stats " + (dir / "s.json").string() +
                            " --indicators " + (dir / "i.csv").string(),
                        dir.path());
-  if (r.status != 0 && r.err.find("no Vulkan device") != std::string::npos) GTEST_SKIP() << r.err;
+  SKIP_WITHOUT_VULKAN(r);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
   auto stats = nlohmann::json::parse(test::read_text(dir / "s.json"));

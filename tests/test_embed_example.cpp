@@ -22,6 +22,7 @@
 #include "sp_shapes.h"
 #include "support/render_checks.h"
 #include "support/run_command.h"
+#include "support/vulkan_environment.h"
 
 namespace sp {
 namespace {
@@ -49,10 +50,6 @@ std::string picture_args(const std::filesystem::path& out, const std::string& ba
 std::size_t count_files(const std::filesystem::path& dir) {
   return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
 }
-
-// Skips when the machine has no Vulkan device at all (the host needs one).
-#define SKIP_WITHOUT_VULKAN(result) \
-  if ((result).status == 1 && (result).err.find("no Vulkan") != std::string::npos) GTEST_SKIP() << (result).err
 
 int dominant_channel(glm::vec3 c) { return c.r >= c.g && c.r >= c.b ? 0 : (c.g >= c.b ? 1 : 2); }
 int dominant_channel(Rgb c) { return dominant_channel(glm::vec3(c.r, c.g, c.b)); }

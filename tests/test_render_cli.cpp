@@ -9,6 +9,7 @@
 
 #include "support/render_checks.h"
 #include "support/run_command.h"
+#include "support/vulkan_environment.h"
 
 namespace sp {
 namespace {
@@ -39,10 +40,6 @@ std::pair<std::uint32_t, std::uint32_t> png_size(const std::filesystem::path& pa
   EXPECT_EQ(bytes.substr(12, 4), "IHDR");
   return {big_endian_u32(bytes, 16), big_endian_u32(bytes, 20)};
 }
-
-// Skips when the machine has no Vulkan device at all (drawing needs one).
-#define SKIP_WITHOUT_VULKAN(result) \
-  if ((result).status != 0 && (result).err.find("no Vulkan device") != std::string::npos) GTEST_SKIP() << (result).err
 
 TEST(RenderCli, WritesAPngOfTheRequestedSize) {
   ScratchDir dir("render-size");

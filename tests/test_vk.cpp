@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/vulkan_environment.h"
 #include "test_fill.comp.spv.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
@@ -39,83 +40,17 @@ using sp::vk::Context;
 using sp::vk::MemoryUsage;
 using sp::vk::StorageBindings;
 
-std::string join(const std::vector<std::string>& lines) {
-  std::string text;
-  for (const std::string& line : lines) text += "\n  " + line;
-  return text;
-}
-
 // ---------------------------------------------------------------------------
-// The one Context of this binary.
-
-struct SharedContext {
-  std::unique_ptr<Context> context;
-  std::string skip_reason;     // no Vulkan device: tests skip
-  std::string failure_reason;  // anything else (e.g. no validation layer): tests fail
-};
-
-SharedContext& shared() {
-  static SharedContext state;
-  return state;
-}
-
-class VulkanEnvironment : public ::testing::Environment {
- public:
-  void SetUp() override {
-    sp::vk::ContextSettings settings;
-    settings.validation = true;
-    auto result = Context::create(settings);
-    if (result.ok()) {
-      shared().context = std::move(result).value();
-      std::printf("[ vulkan   ] %s\n", shared().context->description().c_str());
-      EXPECT_EQ(sp::vk::process_validation_message_count(), 0u)
-          << "validation messages while creating the context:" << join(sp::vk::process_validation_messages());
-    } else if (result.error().message.rfind("no Vulkan device", 0) == 0) {
-      shared().skip_reason = result.error().message;
-      std::printf("[ vulkan   ] skipping Vulkan tests: %s\n", shared().skip_reason.c_str());
-    } else {
-      shared().failure_reason = result.error().message;
-    }
-  }
-
-  // Leaked objects are reported by vkDestroyDevice, inside ~Context, so the
-  // count is read from the process-wide tally after the context is gone.
-  void TearDown() override {
-    const std::uint32_t before = sp::vk::process_validation_message_count();
-    shared().context.reset();
-    const std::uint32_t after = sp::vk::process_validation_message_count();
-    EXPECT_EQ(after, before) << "validation messages while destroying the context (leaks?):"
-                             << join(sp::vk::process_validation_messages(before));
-    EXPECT_EQ(after, 0u) << "validation messages in this run:" << join(sp::vk::process_validation_messages());
-  }
-};
+// The one Context of this binary: the shared GPU harness
+// (support/vulkan_environment.h), registered here since this binary uses
+// gtest_main.
 
 [[maybe_unused]] ::testing::Environment* const kEnvironment =
-    ::testing::AddGlobalTestEnvironment(new VulkanEnvironment);
+    ::testing::AddGlobalTestEnvironment(new sp::test::GpuEnvironment);
 
-class VkTest : public ::testing::Test {
+class VkTest : public sp::test::VulkanTest {
  protected:
-  void SetUp() override {
-    if (!shared().failure_reason.empty()) FAIL() << "Vulkan context: " << shared().failure_reason;
-    if (!shared().context) GTEST_SKIP() << shared().skip_reason;
-    messages_before_ = context().validation_message_count();
-  }
-
-  void TearDown() override {
-    if (!shared().context) return;
-    const std::uint32_t now = context().validation_message_count();
-    if (now != messages_before_) {
-      const std::vector<std::string> texts = context().validation_messages();
-      const auto first = static_cast<std::ptrdiff_t>(std::min<std::size_t>(messages_before_, texts.size()));
-      const std::vector<std::string> fresh(texts.begin() + first, texts.end());
-      ADD_FAILURE() << (now - messages_before_) << " validation message(s) during this test:" << join(fresh);
-    }
-  }
-
-  Context& context() { return *shared().context; }
-
- private:
-  std::uint32_t messages_before_ = 0;
+  Context& context() { return *sp::test::GpuEnvironment::context(); }
 };
 
 // Sets (or, with nullptr, unsets) an environment variable for one scope.

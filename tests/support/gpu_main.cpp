@@ -1,8 +1,8 @@
 // main() of the test binaries that need Vulkan: one validation-enabled
-// context per binary, held by the GpuEnvironment (STYLE rule 25).
+// context per binary, held by the GpuEnvironment (support/vulkan_environment.h).
 #include <gtest/gtest.h>
 
-#include "support/gpu_environment.h"
+#include "support/vulkan_environment.h"
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
