@@ -145,7 +145,7 @@ const std::uint32_t kNotAShape[] = {10};
 std::vector<BadSettings> bad_settings() {
   return {
       {"settings->palette", [](auto& s) { store(s.palette, 3); }},
-      {"settings->palette", [](auto& s) { store(s.palette, -1); }},
+      {"settings->palette", [](auto& s) { store(s.palette, static_cast<std::underlying_type_t<sp_palette>>(-1)); }},
       {"settings->direction", [](auto& s) { s.direction = 2; }},
       {"settings->outline", [](auto& s) { s.outline = -1; }},
       {"settings->size_scale", [](auto& s) { s.size_scale = 0.0f; }},

@@ -349,7 +349,7 @@ TEST_F(Display, MaxPerCategoryDrawsTheMostEnergeticFirst) {
   const float energies[10] = {0.3f, 0.9f, 0.1f, 0.6f, 0.5f, 0.8f, 0.2f, 0.7f, 0.4f, 0.35f};
   std::vector<Indicator> spots;
   const std::vector<glm::vec3> cells = grid(10);
-  for (int k = 0; k < 10; ++k) {
+  for (std::size_t k = 0; k < 10; ++k) {
     // size = indicator_size (1) * E / E0; spots are never under 16 px.
     Indicator ind = spot(cells[k], {0, 1, 0}, {0, -1, 0}, energies[k]);
     ind.energy = energies[k];
@@ -358,9 +358,9 @@ TEST_F(Display, MaxPerCategoryDrawsTheMostEnergeticFirst) {
   const draw::RgbaImage all = draw(uncapped, view, spots);
   const draw::RgbaImage top = draw(capped, view, spots);
   std::set<int> drawn;
-  for (int k = 0; k < 10; ++k) {
+  for (std::size_t k = 0; k < 10; ++k) {
     ASSERT_TRUE(red_near(all, project(view, cells[k]))) << "spot " << k << " not visible uncapped";
-    if (red_near(top, project(view, cells[k]))) drawn.insert(k);
+    if (red_near(top, project(view, cells[k]))) drawn.insert(static_cast<int>(k));
   }
   EXPECT_EQ(drawn, (std::set<int>{1, 3, 5, 7}));
 }

@@ -52,7 +52,9 @@ std::size_t count_beyond(const std::vector<Indicator>& indicators, float x) {
   return n;
 }
 
-std::vector<Indicator> run(Simulator& sim, int steps) { return test::run_steps(sim, steps).indicators; }
+std::vector<Indicator> run(Simulator& sim, int steps) {
+  return test::run_steps(sim, static_cast<std::uint64_t>(steps)).indicators;
+}
 
 TEST_P(LiveScene, WallMovedAwayLetsRaysReachTheFarSideAndBackBlocksThem) {
   auto sim = simulator(room_with_movable_wall(), mirror_config());

@@ -69,7 +69,7 @@ class Host : public test::GpuTest {
     VisualizerSettings settings;
     settings.backend = backend;
     settings.cpu.threads = 2;
-    return std::move(Visualizer::create(host_of(*context_), target_formats(), mirror_room(), settings).value());
+    return Visualizer::create(host_of(*context_), target_formats(), mirror_room(), settings).value();
   }
 
   VkCommandBuffer begin() { return commands_->begin(); }
