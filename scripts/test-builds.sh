@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The test suite built by other compilers and configurations (issue 14,
+# item 7), each in a build folder of its own, each followed by ctest:
+#
+#   bash scripts/test-builds.sh [clang] [assert]     (default: both)
+#
+#   clang   clang++ with -Werror (build-clang/): clang's warnings are not
+#           GCC's (e.g. -Wconversion includes -Wsign-conversion there).
+#   assert  GCC, -O2 with assertions on (build-assert/): no -DNDEBUG, so
+#           every assert() runs, and _GLIBCXX_ASSERTIONS, so the standard
+#           library checks indices, front() and back() of empty containers,
+#           and the like.
+#
+# Left out of both, to keep .ci/run within its hour on two cores: the
+# benchmarks (scripts/test.sh's build runs their smoke tests) and the tests
+# labelled "consumer" (packaging, not the compiler: they build soundpaint
+# again, several times over). The examples stay in: the tests run the example
+# host.
+#
+# Each stage prints its wall time. BUILD_PREFIX (default "build-") names
+# the folders: BUILD_PREFIX=/tmp/build- builds into /tmp/build-clang, ...
+set -euo pipefail
+cd "$(dirname "$0")/.."
+stages=("$@")
+[ ${#stages[@]} -gt 0 ] || stages=(clang assert)
+jobs="$(nproc)"
+prefix="${BUILD_PREFIX:-build-}"
+
+run_stage() {
+  local name="$1" dir="$2"
+  shift 2
+  local start=$SECONDS
+  echo "== $name ($dir/)"
+  cmake -S . -B "$dir" -DSOUNDPAINT_WERROR=ON -DSOUNDPAINT_BUILD_BENCH=OFF "$@" >/dev/null
+  cmake --build "$dir" -j"$jobs"
+  ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 600 --label-exclude consumer
+  echo "== $name: $((SECONDS - start)) s"
+}
+
+for stage in "${stages[@]}"; do
+  case "$stage" in
+    clang)
+      bash scripts/install-deps.sh fuzz  # clang (and the runtimes fuzz.sh needs anyway)
+      run_stage "clang -Werror" "${prefix}clang" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++
+      ;;
+    assert)
+      # RelWithDebInfo's flags without -DNDEBUG (and without -g, which only
+      # makes the build slower here).
+      run_stage "assertions (assert, _GLIBCXX_ASSERTIONS)" "${prefix}assert" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 \
+        -DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS
+      ;;
+    *)
+      echo "test-builds.sh: unknown stage '$stage' (clang, assert)" >&2
+      exit 2
+      ;;
+  esac
+done
