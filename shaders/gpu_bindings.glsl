@@ -20,6 +20,7 @@ layout(std430, binding = SP_BINDING_RING) writeonly buffer RingBuffer { Indicato
 layout(std430, binding = SP_BINDING_CAPTURE) buffer CaptureBuffer { Indicator capture[]; };
 layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint counters[]; };
 layout(std430, binding = SP_BINDING_ADMISSION) buffer AdmissionBuffer { uint admission_histogram[]; };
+layout(std430, binding = SP_BINDING_EDGES) readonly buffer EdgesBuffer { TriangleEdges triangle_edges[]; };
 
 layout(push_constant) uniform Push { WavefrontPush push; };
 

@@ -28,13 +28,18 @@ void main() {
     // caller passes; triangle 0 keeps that index in range.
     BvhTriangle tri = bvh_triangles[found.triangle != SP_INVALID ? found.triangle : 0u];
     StepSource source = step_sources[r.source];
+    // The edge table holds one entry only while diffraction is off.
+    TriangleEdges edges = TriangleEdges(vec3(0.0), 0u, vec3(0.0), 0u);
+    if (step_input.params.diffraction != 0u && found.triangle != SP_INVALID) edges = triangle_edges[found.triangle];
     uint outcome;
     if (r.state == SP_RAY_ACTIVE) {
-      outcome = sp_resolve_active(r, found, tri, layers[tri.layer], source, step_input.params, indicator, sheet_exit);
+      outcome = sp_resolve_active(r, found, tri, edges, layers[tri.layer], source, step_input.params, indicator,
+                                  sheet_exit);
       if ((outcome & SP_OUTCOME_HIT) != 0u) count_event(tri.layer, SP_COUNTER_HITS);
       if ((outcome & SP_OUTCOME_REFLECT) != 0u) count_event(tri.layer, SP_COUNTER_REFLECTIONS);
       if ((outcome & SP_OUTCOME_PENETRATE) != 0u) count_event(tri.layer, SP_COUNTER_PENETRATIONS);
       if ((outcome & SP_OUTCOME_BACK_FACE) != 0u) count_event(tri.layer, SP_COUNTER_BACK_FACE_HITS);
+      if ((outcome & SP_OUTCOME_DIFFRACT) != 0u) count_event(tri.layer, SP_COUNTER_DIFFRACTIONS);
     } else {
       outcome = sp_resolve_backcast(r, found, tri, source, step_input.params, indicator);
       if ((outcome & SP_OUTCOME_BACKCAST_MISS) != 0u) count_event(r.entry_layer, SP_COUNTER_BACKCAST_MISSES);

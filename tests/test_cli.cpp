@@ -92,6 +92,37 @@ TEST(Cli, SameSeedGivesTheSameCsv) {
   EXPECT_GT(lines(a).size(), 10u);
 }
 
+// SPEC 1.3.2: with diffraction off (or the key absent) nothing changes, to
+// the byte; with it on, the stats count the turns in total and per layer
+// and the CSV's last column counts them per indicator.
+TEST(Cli, DiffractionOffChangesNothingAndOnIsCounted) {
+  ScratchDir dir("diffraction");
+  std::ofstream(dir / "off_config.json") << R"({"diffraction": {"enabled": false, "reach": 2.0}})";
+  std::ofstream(dir / "on_config.json") << R"({"diffraction": {"enabled": true}})";
+  auto run = [&](const std::string& name, const std::string& extra) {
+    auto r = run_command(kCli + " simulate " + kScenes + "/level.gltf --backend cpu --steps 10 --seed 4 " + extra +
+                             " --indicators " + (dir / (name + ".csv")).string() + " --stats " +
+                             (dir / (name + ".json")).string(),
+                         dir.path());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::read_text(dir / (name + ".csv"));
+  };
+  const std::string none = run("none", "");
+  EXPECT_EQ(none, run("off", "--config " + (dir / "off_config.json").string()));
+  const std::string on = run("on", "--config " + (dir / "on_config.json").string());
+  EXPECT_NE(none, on);
+  const auto stats = nlohmann::json::parse(test::read_text(dir / "on.json"));
+  const auto stats_none = nlohmann::json::parse(test::read_text(dir / "none.json"));
+  EXPECT_EQ(stats_none["diffractions"].get<std::uint64_t>(), 0u);
+  std::uint64_t per_layer = 0;
+  for (const auto& [name, layer] : stats["layers"].items()) per_layer += layer["diffractions"].get<std::uint64_t>();
+  EXPECT_GT(stats["diffractions"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(stats["diffractions"].get<std::uint64_t>(), per_layer);
+  std::size_t turned_rows = 0;
+  for (const std::string& row : lines(on)) turned_rows += row.substr(row.rfind(',') + 1) != "0" && row[0] != 's';
+  EXPECT_GT(turned_rows, 0u);
+}
+
 TEST(Cli, InfoDescribesTheScene) {
   ScratchDir dir("info");
   auto r = run_command(kCli + " info " + kScenes + "/two_rooms.gltf", dir.path());

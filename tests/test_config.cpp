@@ -456,3 +456,32 @@ TEST(ConfigDisplay, BadValuesNameTheKey) {
   expect_error(R"({"display": {"offscreen_arrows": null}})", {"display.offscreen_arrows"});
   expect_error(R"({"display": {"colour": "red"}})", {"display.colour"});
 }
+
+TEST(ConfigDiffraction, EveryKeyIsReadAndOffIsTheDefault) {
+  const sp::DiffractionSettings off = parse_ok("{}").diffraction;
+  EXPECT_FALSE(off.enabled);
+  EXPECT_EQ(off.edge_angle, 45.0f);
+  EXPECT_EQ(off.frequency, 500.0f);
+  EXPECT_FALSE(off.reach.has_value());
+  EXPECT_EQ(off.gain, 1.0f);
+  EXPECT_FLOAT_EQ(sp::diffraction_reach(off), 343.0f / 1000.0f);  // half a wavelength at 500 Hz
+  const sp::DiffractionSettings d =
+      parse_ok(R"({"diffraction": {"enabled": true, "edge_angle": 80, "frequency": 250, "reach": 0.5, "gain": 0.25}})")
+          .diffraction;
+  EXPECT_TRUE(d.enabled);
+  EXPECT_EQ(d.edge_angle, 80.0f);
+  EXPECT_EQ(d.frequency, 250.0f);
+  EXPECT_EQ(sp::diffraction_reach(d), 0.5f);
+  EXPECT_EQ(d.gain, 0.25f);
+}
+
+TEST(ConfigDiffraction, BadValuesNameTheKey) {
+  expect_error(R"({"diffraction": true})", {"diffraction"});
+  expect_error(R"({"diffraction": {"enabled": 1}})", {"diffraction.enabled"});
+  expect_error(R"({"diffraction": {"enable": true}})", {"diffraction", "enable", "enabled"});
+  expect_error(R"({"diffraction": {"edge_angle": 0}})", {"diffraction.edge_angle"});
+  expect_error(R"({"diffraction": {"edge_angle": 181}})", {"diffraction.edge_angle"});
+  expect_error(R"({"diffraction": {"frequency": 0}})", {"diffraction.frequency"});
+  expect_error(R"({"diffraction": {"reach": -1}})", {"diffraction.reach"});
+  expect_error(R"({"diffraction": {"gain": 1.5}})", {"diffraction.gain"});
+}

@@ -44,6 +44,10 @@ struct Bvh {
   // closest_hit walk `nodes` as the GPU does; code that edits nodes or
   // triangles must reset it.
   std::shared_ptr<const WideBvh> wide;
+  // Per triangle in leaf order: the edges sound bends round
+  // (docs/model.md#diffraction). Empty unless diffraction is on: make_world
+  // fills it then, and refit_bvh keeps it current.
+  std::vector<shader::TriangleEdges> edges;
 
   std::size_t triangle_count() const { return triangles.size(); }
 };
@@ -81,6 +85,7 @@ struct BvhIndexRange {
 struct BvhChanges {
   std::vector<BvhIndexRange> nodes;      // into Bvh::nodes
   std::vector<BvhIndexRange> triangles;  // into Bvh::triangles
+  std::vector<BvhIndexRange> edges;      // into Bvh::edges (only while it is filled)
 };
 
 // Moves the triangles to `vertices` (3 per triangle, in scene order, i.e.
@@ -90,7 +95,8 @@ struct BvhChanges {
 // exactly as build_bvh does, then every node's bounds bottom-up (exact
 // unions, as build_bvh makes them: no padding), then the wide copy, freshly
 // allocated when there was one (copies of the Bvh keep the old one) and left
-// null when there was none. Layers are kept.
+// null when there was none. Layers are kept. Exposed edges are found again
+// when `edges` is filled.
 // Returns what changed, by bitwise comparison of old and new entries; ranges
 // at most 16 unchanged entries apart are merged into one. A bound equal as a
 // float to the old one (+0 and -0) keeps its old bits, so unchanged vertices

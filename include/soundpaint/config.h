@@ -48,6 +48,25 @@ struct SourceDesc {
 enum class BudgetWeighting { Even, Proximity };
 
 // Every key of the JSON configuration, with its default.
+// Diffraction at the scene's exposed edges: the config's `diffraction`
+// (docs/model.md#diffraction). Off by default: without it the model is the
+// paper's, and runs are byte-identical to runs without the key.
+struct DiffractionSettings {
+  bool enabled = false;
+  float edge_angle = 45.0f;    // degrees in (0, 180]: a convex edge whose faces turn by at least this diffracts
+  float frequency = 500.0f;    // Hz, > 0: the wavenumber k = 2 pi f / c of the deflection width
+  std::optional<float> reach;  // metres, > 0: how near an edge a struck ray may turn; default c / (2 f)
+  float gain = 1.0f;           // in [0, 1]: the share of its energy a turned ray keeps
+};
+
+// Speed of sound (m/s) that turns a frequency into a wavelength.
+inline constexpr float kSpeedOfSound = 343.0f;
+
+// The reach in effect: the config's, else half a wavelength at `frequency`.
+inline float diffraction_reach(const DiffractionSettings& d) {
+  return d.reach ? *d.reach : kSpeedOfSound / (2.0f * d.frequency);
+}
+
 struct Config {
   float scan_radius = 50.0f;                 // R_scan, metres
   std::uint32_t ray_budget = 500;            // new rays per step, all sources together
@@ -70,6 +89,7 @@ struct Config {
   std::optional<glm::vec3> listener_position;     // overrides the scene's camera
   std::vector<SourceDesc> sources;                // added after the scene's sources
   DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
+  DiffractionSettings diffraction;                // sound bending round edges (docs/model.md#diffraction)
 };
 
 // Largest accepted values (inclusive); larger values are configuration errors.

@@ -70,6 +70,9 @@ struct LayerCounters {
   // disagrees with the geometry (docs/model.md#the-back-of-a-face-struck-from-air).
   // Counted in hits too.
   std::uint64_t back_face_hits = 0;
+  // Rays that turned round an exposed edge of this layer's faces
+  // (docs/model.md#diffraction); 0 while diffraction is off.
+  std::uint64_t diffractions = 0;
 };
 
 // Totals over every step run so far.

@@ -18,7 +18,8 @@
 #define SP_BINDING_CAPTURE 9
 #define SP_BINDING_COUNTERS 10
 #define SP_BINDING_ADMISSION 11
-#define SP_BINDING_COUNT 12
+#define SP_BINDING_EDGES 12
+#define SP_BINDING_COUNT 13
 
 // Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
 // order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as
@@ -28,7 +29,8 @@
 #define SP_COUNTER_PENETRATIONS 2u
 #define SP_COUNTER_BACKCAST_MISSES 3u
 #define SP_COUNTER_BACK_FACE_HITS 4u
-#define SP_COUNTERS_PER_LAYER 5u
+#define SP_COUNTER_DIFFRACTIONS 5u
+#define SP_COUNTERS_PER_LAYER 6u
 
 SP_BEGIN_NAMESPACE
 

@@ -8,8 +8,10 @@
 // Counter space of one ray:
 //   | counter               | use                                      |
 //   |-----------------------|------------------------------------------|
-//   | 0 .. max_bounces      | reflect/penetrate decision, counter =    |
-//   |                       | interactions so far (bounces+penetrations)|
+//   | 0 .. max_bounces      | interaction `counter` = interactions so  |
+//   |                       | far (bounces + penetrations +            |
+//   |                       | diffractions): .x reflect/penetrate,     |
+//   |                       | .y turn at an edge, .z its angle         |
 //   | 0x80000000 + try      | emission direction, rejection try `try`  |
 #ifndef SP_RANDOM_H
 #define SP_RANDOM_H

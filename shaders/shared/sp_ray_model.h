@@ -6,6 +6,7 @@
 #ifndef SP_RAY_MODEL_H
 #define SP_RAY_MODEL_H
 
+#include "sp_diffraction.h"
 #include "sp_matter.h"
 #include "sp_random.h"
 #include "sp_types.h"
@@ -78,12 +79,14 @@ SP_INLINE vec3 sp_offset_point(vec3 p, vec3 dir, float distance) {
 }
 
 // Resolves an Active ray's forward cast. `tri` is only read when
-// found.triangle is valid; `layer` holds the acoustics of tri.layer. Writes
+// found.triangle is valid; `layer` holds the acoustics of tri.layer and
+// `edges` its exposed edges (read only when p.diffraction is on). Writes
 // `ind` when the result has SP_OUTCOME_INDICATOR, and `sheet_exit` (the exit
 // of a sheet crossed on the spot, after `ind`) when it has
 // SP_OUTCOME_SHEET_EXIT.
-SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, LayerAcoustics layer,
-                                 StepSource source, SimParams p, SP_OUT(Indicator) ind, SP_OUT(Indicator) sheet_exit) {
+SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, TriangleEdges edges,
+                                 LayerAcoustics layer, StepSource source, SimParams p, SP_OUT(Indicator) ind,
+                                 SP_OUT(Indicator) sheet_exit) {
   r.casts += 1u;
   if (found.triangle == SP_INVALID) {
     r.state = SP_RAY_DEAD;
@@ -111,12 +114,20 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
   vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal : tri.normal;  // towards the ray's side (a sheet's back is a front too)
   ind = sp_make_indicator(SP_INDICATOR_HIT, r, source, position, normal, p);
   outcome |= SP_OUTCOME_INDICATOR;
-  uint interactions = r.bounces + r.penetrations;
+  // Diffractions count as interactions: they key the random numbers and
+  // max_bounces bounds them (without diffraction the sum is the paper's).
+  uint interactions = r.bounces + r.penetrations + r.diffractions;
   if (interactions >= p.max_bounces) {
     r.state = SP_RAY_DEAD;
     return outcome;
   }
-  float u = sp_decision_random(p.seed, p.step, r.ray_index, interactions);
+  uvec4 random = sp_pcg4d(p.seed, p.step, r.ray_index, interactions);
+  if (p.diffraction != 0u && edges.exposed != 0u) {
+    bool absorbed;
+    uint turned = sp_try_diffract(r, tri, edges, position, normal, crossing != SP_CROSSING_LEAVE, p, random, absorbed);
+    if (turned != 0u || absorbed) return outcome | turned;
+  }
+  float u = sp_unit_float(random.x);  // == sp_decision_random(p.seed, p.step, r.ray_index, interactions)
   if (u < layer.reflect_probability) {
     outcome |= SP_OUTCOME_REFLECT;
     SP_PRECISE float reflected_energy = r.energy * (1.0f - p.bounce_energy_loss);

@@ -64,6 +64,9 @@
 #define SP_OUTCOME_BACK_FACE 32u
 // A sheet was crossed on the spot: a second indicator (the exit) was written.
 #define SP_OUTCOME_SHEET_EXIT 64u
+// The ray turned round an exposed edge of the face it struck
+// (docs/model.md#diffraction) instead of reflecting or penetrating.
+#define SP_OUTCOME_DIFFRACT 128u
 
 SP_BEGIN_NAMESPACE
 
@@ -112,9 +115,33 @@ struct SimParams {
   float bounce_energy_loss;  // e_loss, fraction per reflection
   float max_wall_thickness;  // W_max, metres
   float indicator_size;      // metres at E == E0
-  uint max_bounces;          // interactions after which a ray dies
+  uint max_bounces;          // interactions (bounces + penetrations + diffractions) after which a ray dies
   uint seed;
   uint step;
+  // Diffraction (docs/model.md#diffraction); diffraction == 0 leaves the
+  // model exactly as without it.
+  uint diffraction;             // 1: rays may turn at exposed edges
+  float edge_cos_max;           // an exposed edge diffracts when cos(turn angle) <= this
+  float diffraction_reach;      // metres from an edge within which a struck ray may turn
+  float diffraction_width;      // 1 / (2k): the deflection width sigma(a) = min(pi/2, width / a)
+  float diffraction_gain;       // fraction of its energy a diffracted ray keeps, in [0, 1]
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// The edges of one triangle that sound can bend round, in leaf order like
+// BvhTriangle (src/bvh/diffraction_edges.h). Edge i runs from vertex i to
+// vertex (i + 1) % 3. For an exposed edge, the surface turns there by the
+// angle phi between this face's normal n and the far face's: the far face's
+// normal is turn_cos[i] * n + turn_sin[i] * o, o being the unit vector in
+// this face's plane, across the edge, pointing out of the triangle. A free
+// boundary has phi = 180 degrees (turn_cos -1, turn_sin 0).
+struct TriangleEdges {
+  vec3 turn_cos;
+  uint exposed;  // bit i: edge i is a free boundary or a convex edge that no other solid buries
+  vec3 turn_sin;
+  uint pad0;
 };
 
 // A source as seen by one step (registry and distribution already done).

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "bvh/bvh_geometry.h"
+#include "bvh/diffraction_edges.h"
 #include "bvh/wide_bvh.h"
 #include "soundpaint/bvh.h"
 #include "soundpaint/result.h"
@@ -170,14 +171,20 @@ BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices) {
   Bvh next;
   next.triangles = refit_triangles(bvh.triangles, vertices);
   next.nodes = refit_nodes(bvh.nodes, next.triangles);
-  BvhChanges changes{changed_ranges(bvh.nodes, next.nodes), changed_ranges(bvh.triangles, next.triangles)};
-  if (changes.nodes.empty() && changes.triangles.empty()) return changes;  // the wide copy is still exact
+  BvhChanges changes{changed_ranges(bvh.nodes, next.nodes), changed_ranges(bvh.triangles, next.triangles), {}};
+  if (changes.nodes.empty() && changes.triangles.empty()) return changes;  // the wide copy and edges still hold
+  // Moved faces may meet at other angles, or bury or uncover an edge.
+  if (!bvh.edges.empty()) {
+    next.edges = find_exposed_edges(next);
+    changes.edges = changed_ranges(bvh.edges, next.edges);
+  }
 
   // A wide copy is immutable and may be shared with copies of `bvh`: build a
   // new one. A Bvh without one keeps walking `nodes`, as its owner chose.
   if (bvh.wide) next.wide = std::make_shared<const WideBvh>(build_wide_bvh(next));
   bvh.nodes.swap(next.nodes);
   bvh.triangles.swap(next.triangles);
+  if (!bvh.edges.empty()) bvh.edges.swap(next.edges);
   bvh.wide = std::move(next.wide);
   return changes;
 }

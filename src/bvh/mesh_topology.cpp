@@ -23,10 +23,11 @@ std::uint32_t weld_bits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f
 // (~1e-6 m), and no feature of a level is this small.
 constexpr double kWeldDistance = 1e-4;
 
-// Welded vertex id of each of the soup's vertices; `positions` receives
-// each id's position. Exact duplicates first (a sort), then corners within
-// kWeldDistance of an earlier one (a grid of that cell size: a neighbour
-// lies in one of the 27 cells around).
+}  // namespace
+
+// Exact duplicates first (a sort), then corners within kWeldDistance of an
+// earlier one (a grid of that cell size: a neighbour lies in one of the 27
+// cells around).
 std::vector<std::uint32_t> weld(std::span<const glm::vec3> vertices, std::vector<glm::vec3>& positions) {
   using Key = std::array<std::uint32_t, 3>;
   std::vector<std::uint32_t> order(vertices.size());
@@ -84,6 +85,8 @@ std::vector<std::uint32_t> weld(std::span<const glm::vec3> vertices, std::vector
   for (std::size_t i = 0; i < vertices.size(); ++i) ids[i] = welded[exact[i]];
   return ids;
 }
+
+namespace {
 
 struct UnionFind {
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }

@@ -36,6 +36,10 @@ struct MeshTopology {
   std::vector<std::uint64_t> inconsistent_edges_by_layer;
 };
 
+// Welded vertex id of each of `vertices` (corners within 0.1 mm share one);
+// `positions` receives each id's position.
+std::vector<std::uint32_t> weld(std::span<const glm::vec3> vertices, std::vector<glm::vec3>& positions);
+
 // `vertices`: 3 per triangle; `layers`: one per triangle (ids < layer_count).
 MeshTopology analyse_mesh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
                           std::size_t layer_count);

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/diffraction_json.h"
 #include "config/display_json.h"
 #include "config/json_fields.h"
 #include "config/layer_names.h"
@@ -133,6 +134,7 @@ constexpr KeyReader kKeyReaders[] = {
     {"listener", read_listener},
     {"sources", read_sources},
     {"display", [](const json& v, const JsonPath& at, Config& c) { read_display(v, at, c.display); }},
+    {"diffraction", [](const json& v, const JsonPath& at, Config& c) { read_diffraction(v, at, c.diffraction); }},
 };
 
 Config read_config(const json& root, std::string_view origin) {

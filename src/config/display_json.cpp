@@ -18,11 +18,6 @@ std::string shape_names() {
   return names;
 }
 
-bool read_bool(const nlohmann::json& value, const JsonPath& at) {
-  if (!value.is_boolean()) at.fail("must be true or false", value);
-  return value.get<bool>();
-}
-
 Palette read_palette(const nlohmann::json& value, const JsonPath& at) {
   if (value.is_string()) {
     if (const auto palette = palette_from_name(value.get_ref<const std::string&>())) return *palette;

@@ -383,4 +383,9 @@ glm::vec3 read_vec3(const json& value, const JsonPath& at, NumberRange range) {
   return v;
 }
 
+bool read_bool(const nlohmann::json& value, const JsonPath& at) {
+  if (!value.is_boolean()) at.fail("must be true or false", value);
+  return value.get<bool>();
+}
+
 }  // namespace sp::json_fields

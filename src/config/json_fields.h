@@ -98,6 +98,7 @@ float read_float(const nlohmann::json& value, const JsonPath& at, NumberRange ra
 std::uint32_t read_uint32(const nlohmann::json& value, const JsonPath& at, std::uint32_t min = 0,
                           std::uint32_t max = std::numeric_limits<std::uint32_t>::max());
 std::string read_string(const nlohmann::json& value, const JsonPath& at);
+bool read_bool(const nlohmann::json& value, const JsonPath& at);
 // An array of exactly three floats, each inside `range`.
 glm::vec3 read_vec3(const nlohmann::json& value, const JsonPath& at, NumberRange range = kAnyNumber);
 

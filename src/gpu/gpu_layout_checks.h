@@ -16,7 +16,10 @@ static_assert(sizeof(BvhTriangle) == 64 && offsetof(BvhTriangle, layer) == 12 &&
               offsetof(BvhTriangle, scene_index) == 28 && offsetof(BvhTriangle, v2) == 32 &&
               offsetof(BvhTriangle, solid) == 44 && offsetof(BvhTriangle, normal) == 48);
 static_assert(sizeof(LayerAcoustics) == 16 && offsetof(LayerAcoustics, sheet_thickness) == 8);
-static_assert(sizeof(SimParams) == 32);
+static_assert(sizeof(SimParams) == 64 && offsetof(SimParams, diffraction) == 32 &&
+              offsetof(SimParams, diffraction_gain) == 48);
+static_assert(sizeof(TriangleEdges) == 32 && offsetof(TriangleEdges, exposed) == 12 &&
+              offsetof(TriangleEdges, turn_sin) == 16);
 static_assert(sizeof(StepSource) == 48 && offsetof(StepSource, color) == 16 && offsetof(StepSource, intensity) == 32 &&
               offsetof(StepSource, source_id) == 44);
 static_assert(sizeof(RayState) == 96 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 &&
@@ -33,7 +36,7 @@ static_assert(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 
               offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 // StepSource[] follows StepInput in one buffer; std430 places it at the
 // array's alignment (16, from vec3), which sizeof(StepInput) already is.
-static_assert(sizeof(StepInput) == 64 && sizeof(StepInput) % 16 == 0);
+static_assert(sizeof(StepInput) == 96 && sizeof(StepInput) % 16 == 0);
 static_assert(sizeof(WavefrontPush) == 16);
 static_assert(alignof(BvhNode) == 4 && alignof(Indicator) == 4);
 

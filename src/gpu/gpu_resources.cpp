@@ -84,6 +84,11 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                      "bvh nodes");
   triangles = vk::Buffer(context, bytes<shader::BvhTriangle>(triangle_count), kStorage | kTransfer,
                          vk::MemoryUsage::DeviceLocal, "bvh triangles");
+  // Diffraction off: one zero entry, which the kernels never read.
+  const std::vector<shader::TriangleEdges> edge_table =
+      world.bvh.edges.empty() ? std::vector<shader::TriangleEdges>(1) : world.bvh.edges;
+  edges = vk::Buffer(context, bytes<shader::TriangleEdges>(edge_table.size()), kStorage | kTransfer,
+                     vk::MemoryUsage::DeviceLocal, "exposed edges");
   layers = vk::Buffer(context, bytes<shader::LayerAcoustics>(layer_table.size()), kStorage | kTransfer,
                       vk::MemoryUsage::DeviceLocal, "layer acoustics");
   step_input = vk::Buffer(context, sizeof(shader::StepInput) + bytes<shader::StepSource>(source_capacity),
@@ -114,6 +119,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   staging.add(nodes, world.bvh.nodes);
   staging.add(triangles, world.bvh.triangles);
   staging.add(layers, layer_table);
+  staging.add(edges, edge_table);
   staging.add(control, initial);
   staging.add(counters, zeros);
   staging.add(admission, empty_admission);
@@ -122,7 +128,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
   const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes, &triangles, &layers, &step_input, &rays,   &hits,
                                                &queues, &control,  &ring,   &capture,    &counters,
-                                               &admission};
+                                               &admission, &edges};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));

@@ -42,6 +42,7 @@ struct GpuResources {
   std::uint32_t source_capacity = 0;    // entries of the step input's source table
 
   vk::Buffer nodes, triangles, layers;  // scene, read-only
+  vk::Buffer edges;                     // exposed edges per triangle (one zero entry while diffraction is off)
   vk::Buffer step_input;                // host-written each step
   vk::Buffer rays, hits, queues;        // ray state and work queues
   vk::Buffer control;                   // queue args, draw args, totals

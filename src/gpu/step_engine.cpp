@@ -52,7 +52,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
   const bool first = !uploaded_;
   if (first) record_initial_uploads(cmd);
   const BvhChanges changes = scene.update_geometry();
-  if (first && !(changes.nodes.empty() && changes.triangles.empty())) {
+  if (first && !(changes.nodes.empty() && changes.triangles.empty() && changes.edges.empty())) {
     // WAW: the rest pose's copy lands before the moved parts overwrite it.
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -114,6 +114,10 @@ void StepEngine::record_geometry_changes(VkCommandBuffer cmd, const World& world
   for (const BvhIndexRange& range : changes.triangles) {
     vk::record_update(cmd, resources_.triangles, range.first * sizeof(BvhTriangle), &bvh.triangles[range.first],
                       (range.last - range.first) * sizeof(BvhTriangle));
+  }
+  for (const BvhIndexRange& range : changes.edges) {
+    vk::record_update(cmd, resources_.edges, range.first * sizeof(shader::TriangleEdges), &bvh.edges[range.first],
+                      (range.last - range.first) * sizeof(shader::TriangleEdges));
   }
 }
 

@@ -35,6 +35,9 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
   json["max_casts_per_step"] = stats.max_casts_per_step;
   json["rays_emitted"] = stats.rays_emitted;
   json["indicators"] = stats.indicators;
+  std::uint64_t diffractions = 0;
+  for (const LayerCounters& c : stats.layers) diffractions += c.diffractions;
+  json["diffractions"] = diffractions;  // the run's total (contract: README.md, "Command line")
   nlohmann::ordered_json layers = nlohmann::ordered_json::object();
   for (std::size_t l = 0; l < world.layer_names.size() && l < stats.layers.size(); ++l) {
     const LayerCounters& c = stats.layers[l];
@@ -42,7 +45,8 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
                                     {"reflections", c.reflections},
                                     {"penetrations", c.penetrations},
                                     {"backcast_misses", c.backcast_misses},
-                                    {"back_face_hits", c.back_face_hits}};
+                                    {"back_face_hits", c.back_face_hits},
+                                    {"diffractions", c.diffractions}};
   }
   json["layers"] = layers;
   nlohmann::ordered_json timing;

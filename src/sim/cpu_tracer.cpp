@@ -12,6 +12,8 @@ void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<In
   const StepSource& source = context.sources[ray.source];
   const SimParams& p = context.params;
   BvhTriangle no_triangle{};
+  const TriangleEdges no_edges{};
+  const bool diffraction = p.diffraction != 0u;
 
   while (ray.state != SP_RAY_DEAD) {
     CastResult found{};
@@ -30,12 +32,17 @@ void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<In
     Indicator sheet_exit;
     uint outcome;
     if (ray.state == SP_RAY_ACTIVE) {
-      outcome = sp_resolve_active(ray, found, triangle, context.layers[triangle.layer], source, p, indicator, sheet_exit);
+      // The edge table is filled only while diffraction is on.
+      const TriangleEdges& edges =
+          diffraction && found.triangle != SP_INVALID ? context.bvh->edges[found.triangle] : no_edges;
+      outcome = sp_resolve_active(ray, found, triangle, edges, context.layers[triangle.layer], source, p, indicator,
+                                  sheet_exit);
       LayerCounters& layer = counters.layers[triangle.layer];
       layer.hits += (outcome & SP_OUTCOME_HIT) != 0;
       layer.reflections += (outcome & SP_OUTCOME_REFLECT) != 0;
       layer.penetrations += (outcome & SP_OUTCOME_PENETRATE) != 0;
       layer.back_face_hits += (outcome & SP_OUTCOME_BACK_FACE) != 0;
+      layer.diffractions += (outcome & SP_OUTCOME_DIFFRACT) != 0;
     } else {
       const uint entry_layer = ray.entry_layer;
       outcome = sp_resolve_backcast(ray, found, triangle, source, p, indicator);

@@ -20,6 +20,7 @@ inline void accumulate(LayerCounters& into, const LayerCounters& more) {
   into.penetrations += more.penetrations;
   into.backcast_misses += more.backcast_misses;
   into.back_face_hits += more.back_face_hits;
+  into.diffractions += more.diffractions;
 }
 
 // Per-worker counters, summed after the step (integer sums: order-free).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "bvh/diffraction_edges.h"
 #include "core/finite.h"
 #include "display/display_checks.h"
 #include "sim/source_checks.h"
@@ -194,10 +195,15 @@ BvhChanges SoundScene::update_geometry() {
   }
   BvhChanges changes = refit_bvh(world_.bvh, vertices);
   if (absolute_sah_cost(world_.bvh) > kRebuildCostRatio * world_.build_sah_cost) {
+    const bool had_edges = !world_.bvh.edges.empty();
     world_.bvh = build_bvh(vertices, world_.triangle_layers, world_.triangle_solids);
     world_.build_sah_cost = absolute_sah_cost(world_.bvh);
     changes.nodes = {{0, static_cast<std::uint32_t>(world_.bvh.nodes.size())}};
     changes.triangles = {{0, static_cast<std::uint32_t>(world_.bvh.triangles.size())}};
+    if (had_edges) {
+      world_.bvh.edges = find_exposed_edges(world_.bvh);
+      changes.edges = {{0, static_cast<std::uint32_t>(world_.bvh.edges.size())}};
+    }
   }
   return changes;
 }

@@ -89,6 +89,17 @@ shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
   p.seed = config.seed;
   // The RNG key is 32-bit; steps beyond 2^32 (two years at 60 Hz) wrap.
   p.step = static_cast<std::uint32_t>(step);
+  const DiffractionSettings& d = config.diffraction;
+  if (d.enabled) {
+    // Computed here once, so both backends read the same floats.
+    constexpr double kPi = 3.14159265358979323846;
+    p.diffraction = 1u;
+    p.edge_cos_max = static_cast<float>(std::cos(double(d.edge_angle) * kPi / 180.0));
+    p.diffraction_reach = diffraction_reach(d);
+    // sigma(a) = 1 / (2 k a), k = 2 pi f / c: the width is c / (4 pi f).
+    p.diffraction_width = static_cast<float>(double(kSpeedOfSound) / (4.0 * kPi * double(d.frequency)));
+    p.diffraction_gain = d.gain;
+  }
   return p;
 }
 

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "bvh/diffraction_edges.h"
 #include "bvh/mesh_topology.h"
 #include "core/finite.h"
 #include "display/display_checks.h"
@@ -115,6 +116,8 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     // piece met through a shared edge once (docs/model.md#the-rules).
     MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, scene.layer_names.size());
     world.bvh = build_bvh(scene.vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
+    // The edges sound bends round, only when it may (docs/model.md#diffraction).
+    if (config.diffraction.enabled) world.bvh.edges = find_exposed_edges(world.bvh);
     if (!scene.instance_names.empty()) {
       world.instance_names = scene.instance_names;
       world.instance_transforms.assign(scene.instance_names.size(), glm::mat4(1.0f));

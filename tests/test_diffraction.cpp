@@ -1,0 +1,416 @@
+// Diffraction at exposed edges (docs/model.md#diffraction): which edges are
+// exposed, single rays against hand-derived distributions, and both backends
+// on scenes where only diffraction can reach a place (a half-plane screen's
+// shadow, an L-shaped corridor's far leg) or where nothing may leak (a closed
+// room of touching slabs).
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "bvh/diffraction_edges.h"
+#include "sim/cpu_tracer.h"
+#include "sim/step_plan.h"
+#include "soundpaint/config.h"
+#include "sp_diffraction.h"
+#include "sp_ray_model.h"
+#include "support/gpu_environment.h"
+#include "support/run_steps.h"
+#include "support/scene_builder.h"
+
+namespace sp {
+namespace {
+
+using test::add_box;
+using test::add_quad;
+
+constexpr double kPi = std::numbers::pi;
+
+int exposed_count(const std::vector<shader::TriangleEdges>& table) {
+  int n = 0;
+  for (const shader::TriangleEdges& e : table) n += std::popcount(e.exposed);
+  return n;
+}
+
+Bvh bvh_of(const Scene& scene) { return build_bvh(scene.vertices, scene.triangle_layers); }
+
+// ------------------------------------------------------------- the edges
+
+TEST(DiffractionEdges, ABoxHasTwelveConvexEdgesAtRightAngles) {
+  // 12 triangles; each holds two of the box's edges (its third is a face's
+  // diagonal, flat), and each box edge is held by two triangles: 24 bits.
+  Scene scene;
+  add_box(scene, {0, 0, 0}, {1, 2, 3}, "stone");
+  const Bvh bvh = bvh_of(scene);
+  const auto table = find_exposed_edges(bvh);
+  ASSERT_EQ(table.size(), 12u);
+  EXPECT_EQ(exposed_count(table), 24);
+  for (const shader::TriangleEdges& e : table) {
+    EXPECT_EQ(std::popcount(e.exposed), 2);
+    for (int i = 0; i < 3; ++i) {
+      if (((e.exposed >> i) & 1u) == 0u) continue;
+      EXPECT_NEAR(e.turn_cos[i], 0.0f, 1e-6f);
+      EXPECT_NEAR(e.turn_sin[i], 1.0f, 1e-6f);
+    }
+  }
+}
+
+TEST(DiffractionEdges, TheFarFaceNormalFollowsFromTheTurn) {
+  // Every exposed edge of a box: cos * n + sin * o (o across the edge, out
+  // of the triangle) must be the normal of the other face at that edge,
+  // which for a box is the outward axis the edge's midpoint sits on.
+  Scene scene;
+  add_box(scene, {-1, -1, -1}, {1, 1, 1}, "stone");
+  const Bvh bvh = bvh_of(scene);
+  const auto table = find_exposed_edges(bvh);
+  for (std::size_t t = 0; t < bvh.triangles.size(); ++t) {
+    const BvhTriangle& tri = bvh.triangles[t];
+    const glm::vec3 v[3] = {tri.v0, tri.v1, tri.v2};
+    for (int i = 0; i < 3; ++i) {
+      if (((table[t].exposed >> i) & 1u) == 0u) continue;
+      const glm::vec3 along = glm::normalize(v[(i + 1) % 3] - v[i]);
+      const glm::vec3 out = glm::cross(along, tri.normal);
+      const glm::vec3 far = tri.normal * table[t].turn_cos[i] + out * table[t].turn_sin[i];
+      // The midpoint of a box edge has two coordinates at +-1: one is this
+      // face's axis, the other the far face's.
+      const glm::vec3 mid = 0.5f * (v[i] + v[(i + 1) % 3]);
+      const glm::vec3 expected = mid - tri.normal * glm::dot(mid, tri.normal);  // drop this face's axis
+      EXPECT_NEAR(glm::distance(far, expected), 0.0f, 1e-5f);
+    }
+  }
+}
+
+TEST(DiffractionEdges, ASheetsRimIsAFreeBoundary) {
+  Scene scene;
+  add_quad(scene, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, "pane");
+  const auto table = find_exposed_edges(bvh_of(scene));
+  EXPECT_EQ(exposed_count(table), 4);  // the diagonal is shared and flat
+  for (const shader::TriangleEdges& e : table)
+    for (int i = 0; i < 3; ++i)
+      if ((e.exposed >> i) & 1u) {
+        EXPECT_EQ(e.turn_cos[i], -1.0f);
+        EXPECT_EQ(e.turn_sin[i], 0.0f);
+      }
+}
+
+TEST(DiffractionEdges, ConcaveAndBuriedEdgesAreNotExposed) {
+  // Two quads meeting at x = 0 along z. Fronts facing into the corner
+  // (a room's floor and wall): concave, never exposed; only the rims are.
+  Scene inner;
+  add_quad(inner, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, "floor");  // y = 0, front +y
+  add_quad(inner, {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, "wall");   // x = 0, front +x
+  const auto concave = find_exposed_edges(bvh_of(inner));
+  // 8 rim edges of the two quads, less the shared one counted by neither.
+  EXPECT_EQ(exposed_count(concave), 6);
+  // The same quads facing away from each other: a convex ridge, exposed.
+  Scene outer;
+  add_quad(outer, {0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, "floor");  // y = 0, front -y
+  add_quad(outer, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}, "wall");   // x = 0, front -x
+  EXPECT_EQ(exposed_count(find_exposed_edges(bvh_of(outer))), 8);
+
+  // A block standing on a slab: its bottom edges touch the slab's top, so
+  // they are buried; its four top and four upright edges stay exposed.
+  Scene standing;
+  add_box(standing, {-5, -1, -5}, {5, 0, 5}, "slab");
+  add_box(standing, {0, 0, 0}, {1, 1, 1}, "block");
+  const Bvh bvh = bvh_of(standing);
+  const auto table = find_exposed_edges(bvh);
+  int block_bits = 0;
+  for (std::size_t t = 0; t < bvh.triangles.size(); ++t)
+    if (bvh.triangles[t].layer == 1u) block_bits += std::popcount(table[t].exposed);
+  EXPECT_EQ(block_bits, 2 * 8);
+}
+
+TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
+  // A block lifted off a slab uncovers its bottom edges.
+  Scene scene;
+  add_box(scene, {-5, -1, -5}, {5, 0, 5}, "slab");
+  add_box(scene, {0, 0, 0}, {1, 1, 1}, "block");
+  Bvh bvh = bvh_of(scene);
+  bvh.edges = find_exposed_edges(bvh);
+  const int before = exposed_count(bvh.edges);
+  std::vector<glm::vec3> moved = scene.vertices;
+  for (std::size_t k = 36; k < moved.size(); ++k) moved[k].y += 0.5f;
+  const BvhChanges changes = refit_bvh(bvh, moved);
+  EXPECT_FALSE(changes.edges.empty());
+  EXPECT_EQ(exposed_count(bvh.edges), before + 2 * 4);
+}
+
+TEST(DiffractionModel, SinAndCosPolynomialsAreAccurateOnZeroToPi) {
+  double worst = 0.0;
+  for (int k = 0; k <= 10000; ++k) {
+    const float x = static_cast<float>(kPi * k / 10000.0);
+    const glm::vec2 sc = shader::sp_sin_cos(x);
+    worst = std::max({worst, std::abs(sc.x - std::sin(double(x))), std::abs(sc.y - std::cos(double(x)))});
+  }
+  EXPECT_LT(worst, 1e-6);
+}
+
+// ----------------------------------------------------- a half-plane screen
+
+// A screen in the plane z = 0 over x <= 0 (front +z) with its free edge
+// along x = 0, and a receiving floor at z = -1 behind it. Both are sheets
+// that absorb whatever enters them. Rays fall straight down onto the screen
+// from z = 1, so the shadow boundary at the edge points straight down, and
+// a floor hit at x < 0 was turned by atan(-x / 1) into the shadow.
+struct HalfPlane {
+  Scene scene;
+  Config config;
+  World world;
+  std::vector<shader::LayerAcoustics> layers;
+  shader::StepSource source{};
+
+  explicit HalfPlane(bool diffraction, float gain = 1.0f) {
+    add_quad(scene, {-5, -5, 0}, {0, -5, 0}, {0, 5, 0}, {-5, 5, 0}, "screen");
+    add_quad(scene, {-200, -200, -1}, {200, -200, -1}, {200, 200, -1}, {-200, 200, -1}, "floor");
+    config.layers["screen"] = {0.0f, 1000.0f, 0.01f};
+    config.layers["floor"] = {0.0f, 1000.0f, 0.01f};
+    config.air_attenuation = 0.0f;
+    config.min_energy = 0.01f;
+    config.max_bounces = 4;
+    config.listener_position = glm::vec3(0, 0, 5);
+    config.diffraction.enabled = diffraction;
+    config.diffraction.gain = gain;
+    world = make_world(scene, config).value();
+    layers = make_layer_table(world);
+    source.max_distance = 1000.0f;
+    source.loudness = 1.0f;
+    source.intensity = 1.0f;
+  }
+
+  // Ray `index` falling straight down onto the screen a metres from its edge.
+  std::vector<Indicator> drop(float a, std::uint32_t index, TraceCounters& counters) const {
+    TraceContext context{&world.bvh, layers, {&source, 1}, make_sim_params(config, 0)};
+    shader::RayState ray = shader::sp_emit_ray(source, 0, index, config.seed, 0);
+    ray.origin = glm::vec3(-a, 0.0f, 1.0f);
+    ray.dir = glm::vec3(0.0f, 0.0f, -1.0f);
+    counters.layers.assign(world.layer_names.size(), {});
+    std::vector<Indicator> out;
+    trace_ray(context, ray, out, counters);
+    return out;
+  }
+};
+
+// P(theta > x) for a ray struck a metres from the edge (the model's law,
+// derived by hand from its definition, not from the code).
+double tail(double a, double x, const DiffractionSettings& d) {
+  const double width = kSpeedOfSound / (4.0 * kPi * d.frequency);
+  const double sigma = std::min(kPi / 2.0, width / std::max(a, 1e-3));
+  return sigma / (sigma + x);
+}
+
+TEST(DiffractionHalfPlane, ShadowHitsFollowTheAngleLawAndOnlyWithDiffractionOn) {
+  const int n = 4000;
+  const double bins[] = {0.0, 30.0, 60.0, 85.0};  // degrees into the shadow
+  for (bool on : {false, true}) {
+    HalfPlane scene(on);
+    const float reach = diffraction_reach(scene.config.diffraction);
+    ASSERT_NEAR(reach, 0.343f, 1e-6f);
+    double expected[3] = {0, 0, 0}, variance[3] = {0, 0, 0}, expected_turns = 0.0;
+    int observed[3] = {0, 0, 0}, shadow_hits = 0;
+    std::uint64_t turns = 0;
+    for (int j = 0; j < n; ++j) {
+      const double a = reach * (j + 0.5) / n;
+      const double turn = 1.0 - a / reach;
+      expected_turns += turn * (1.0 - tail(a, kPi / 2.0, scene.config.diffraction));
+      for (int b = 0; b < 3; ++b) {
+        const double p = turn * (tail(a, bins[b] * kPi / 180.0, scene.config.diffraction) -
+                                 tail(a, bins[b + 1] * kPi / 180.0, scene.config.diffraction));
+        expected[b] += p;
+        variance[b] += p * (1.0 - p);
+      }
+      TraceCounters counters;
+      const auto out = scene.drop(static_cast<float>(a), static_cast<std::uint32_t>(j), counters);
+      turns += counters.layers[0].diffractions;
+      ASSERT_GE(out.size(), 1u);
+      EXPECT_EQ(out[0].diffractions, 0u);  // the screen near its edge gets its cue first
+      for (std::size_t k = 1; k < out.size(); ++k) {
+        const Indicator& hit = out[k];
+        ASSERT_EQ(hit.diffractions, 1u);
+        EXPECT_NEAR(hit.position.z, -1.0f, 1e-4f);
+        EXPECT_NEAR(hit.dir.y, 0.0f, 1e-6f);  // Keller's cone: nothing along the edge before, nothing after
+        if (hit.position.x < 0.0f) ++shadow_hits;
+        const double theta = std::atan2(SP_DIFFRACTION_OFFSET - hit.position.x, 1.0) * 180.0 / kPi;
+        for (int b = 0; b < 3; ++b) observed[b] += theta >= bins[b] && theta < bins[b + 1];
+      }
+    }
+    if (!on) {
+      EXPECT_EQ(shadow_hits, 0);
+      EXPECT_EQ(turns, 0u);
+      continue;
+    }
+    EXPECT_NEAR(double(turns), expected_turns, 5.0 * std::sqrt(expected_turns) + 1.0);
+    for (int b = 0; b < 3; ++b) {
+      EXPECT_NEAR(observed[b], expected[b], 5.0 * std::sqrt(variance[b]) + 1.0) << "bin " << bins[b];
+    }
+    EXPECT_GT(observed[0], observed[1]);  // what reaches the shadow falls with the angle
+    EXPECT_GT(observed[1], observed[2]);
+    EXPECT_GT(shadow_hits, n / 4);
+  }
+}
+
+TEST(DiffractionHalfPlane, ATurnedRayCarriesAtMostGainTimesItsEnergy) {
+  // No air loss: a floor hit after a turn carries exactly gain * E0, and its
+  // path is the drop, the way to the edge and on to the floor.
+  HalfPlane scene(true, 0.5f);
+  int turned = 0;
+  for (std::uint32_t j = 0; j < 500; ++j) {
+    TraceCounters counters;
+    const float a = 0.3f * (static_cast<float>(j) + 0.5f) / 500.0f;
+    const auto out = scene.drop(a, j, counters);
+    for (std::size_t k = 1; k < out.size(); ++k) {
+      ++turned;
+      EXPECT_FLOAT_EQ(out[k].energy, 0.5f);
+      EXPECT_FLOAT_EQ(out[k].size, 0.5f * scene.config.indicator_size);
+      const glm::vec3 edge(0.0f, 0.0f, 0.0f);
+      const float expected = 1.0f + a + glm::distance(edge, out[k].position);
+      EXPECT_NEAR(out[k].path_length, expected, 2e-3f);
+    }
+  }
+  EXPECT_GT(turned, 100);
+}
+
+// ------------------------------------------------ both backends, whole runs
+
+// Walls that swallow what enters them: nothing reflects, nothing gets
+// through, so a place out of the source's sight is reached by turning only.
+void absorbing(Config& config, const std::string& layer) { config.layers[layer] = {0.0f, 100.0f}; }
+
+// An L-shaped corridor, 2 m wide and 100 m tall (so that nothing goes over
+// the top within reach of a source at mid-height): leg one along +x
+// (x in [0, 10], z in [0, 2]), leg two along +z (x in [8, 10], z in [2, 10]).
+// The block between them has its convex corner edge at x = 8, z = 2.
+// The source at (6, 0, 0.5) sees the block's corner face at about 37
+// degrees; its sight past the corner ends at z = 0.5 + (10 - 6) * 1.5 / 2
+// = 3.5 on the outer wall, so the far leg (z > 4.5) is out of its sight.
+Scene l_corridor() {
+  Scene scene;
+  add_box(scene, {0, -50, 2}, {8, 50, 10}, "block");
+  add_box(scene, {-0.3f, -50, -0.3f}, {10.3f, 50, 0}, "walls");  // leg one's outer wall
+  add_box(scene, {10, -50, 0}, {10.3f, 50, 10.3f}, "walls");      // the outer corner's wall
+  add_box(scene, {-0.3f, -50, 0}, {0, 50, 2}, "walls");           // leg one's end
+  add_box(scene, {8, -50, 10}, {10, 50, 10.3f}, "walls");         // leg two's end
+  scene.sources.push_back(test::source_at({6, 0, 0.5f}));
+  return scene;
+}
+
+Config l_corridor_config(bool diffraction) {
+  Config config;
+  absorbing(config, "block");
+  absorbing(config, "walls");
+  config.listener_position = glm::vec3(9, 0, 9);
+  config.ray_budget = 6000;
+  config.max_wall_thickness = 0.5f;
+  config.diffraction.enabled = diffraction;
+  return config;
+}
+
+class DiffractionBackends : public test::GpuTest, public ::testing::WithParamInterface<Backend> {};
+
+TEST_P(DiffractionBackends, TheCornerGetsCuesAndTheFarLegOnlyByTurning) {
+  for (bool on : {false, true}) {
+    World world = make_world(l_corridor(), l_corridor_config(on)).value();
+    auto sim = make_simulator(std::move(world), GetParam());
+    const test::Recorded out = test::run_steps(*sim, 4);
+    int corner = 0, far_leg = 0, far_leg_turned = 0;
+    std::uint64_t turned_indicators = 0;
+    for (const Indicator& ind : out.indicators) {
+      const glm::vec2 from_corner(ind.position.x - 8.0f, ind.position.z - 2.0f);
+      if (glm::length(from_corner) < 0.5f && ind.diffractions == 0u) ++corner;
+      if (ind.position.z > 4.5f) {
+        ++far_leg;
+        far_leg_turned += ind.diffractions > 0u;
+      }
+      turned_indicators += ind.diffractions > 0u;
+    }
+    std::uint64_t diffractions = 0;
+    for (const LayerCounters& layer : out.stats.layers) diffractions += layer.diffractions;
+    EXPECT_GT(corner, 5) << "on " << on;
+    if (!on) {
+      EXPECT_EQ(far_leg, 0);
+      EXPECT_EQ(diffractions, 0u);
+      EXPECT_EQ(turned_indicators, 0u);
+    } else {
+      EXPECT_GT(far_leg, 15);
+      EXPECT_EQ(far_leg_turned, far_leg);  // every cue there came round an edge
+      EXPECT_GT(diffractions, 0u);
+      EXPECT_LE(out.stats.rays_emitted, 4u * 6000u);  // the budget holds: nothing spawned
+    }
+  }
+}
+
+TEST_P(DiffractionBackends, AClosedRoomOfTouchingSlabsLeaksNothing) {
+  // Every edge of the room's inside is buried where slabs touch, so nothing
+  // turns, and with walls that reflect everything nothing gets out.
+  Scene scene = test::closed_room();
+  Config config;
+  config.layers["concrete"] = {1.0f, 2.0f};
+  config.listener_position = glm::vec3(0, 1.5f, 0);
+  config.ray_budget = 3000;
+  config.max_bounces = 8;
+  config.diffraction.enabled = true;
+  config.diffraction.reach = 1.0f;
+  World world = make_world(scene, config).value();
+  auto sim = make_simulator(std::move(world), GetParam());
+  const test::Recorded out = test::run_steps(*sim, 2);
+  ASSERT_GT(out.indicators.size(), 1000u);
+  for (const Indicator& ind : out.indicators) {
+    EXPECT_EQ(ind.diffractions, 0u);
+    const glm::vec3 p = ind.position;
+    const float e = 1e-3f;  // positions on a face are a rounding off it
+    EXPECT_TRUE(p.x >= -3 - e && p.x <= 3 + e && p.y >= -e && p.y <= 3 + e && p.z >= -2.5f - e && p.z <= 2.5f + e)
+        << p.x << ", " << p.y << ", " << p.z;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, DiffractionBackends, ::testing::Values(Backend::Cpu, Backend::Gpu),
+                         [](const ::testing::TestParamInfo<Backend>& param_info) {
+                           return param_info.param == Backend::Cpu ? "Cpu" : "Gpu";
+                         });
+
+// The two backends write the same indicators, diffractions included, with
+// diffraction on and off.
+class DiffractionParity : public test::GpuTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(DiffractionParity, CpuAndGpuAgreeIndicatorForIndicator) {
+  std::vector<Indicator> lists[2];
+  for (Backend backend : {Backend::Cpu, Backend::Gpu}) {
+    Scene scene = l_corridor();
+    Config config = l_corridor_config(GetParam());
+    // Some reflection, so that turned rays bounce on and turn again.
+    config.layers["block"] = {0.5f, 100.0f};
+    config.max_bounces = 6;
+    World world = make_world(scene, config).value();
+    auto sim = make_simulator(std::move(world), backend);
+    lists[backend == Backend::Gpu] = test::run_steps(*sim, 2).indicators;
+  }
+  ASSERT_EQ(lists[0].size(), lists[1].size());
+  std::size_t differing = 0, turned = 0;
+  for (std::size_t k = 0; k < lists[0].size(); ++k) {
+    const Indicator& c = lists[0][k];
+    const Indicator& g = lists[1][k];
+    const bool same = c.kind == g.kind && c.ray_index == g.ray_index && c.iteration == g.iteration &&
+                      c.diffractions == g.diffractions && c.bounces == g.bounces &&
+                      std::abs(c.energy - g.energy) <= 1e-5f && glm::distance(c.position, g.position) <= 1e-5f;
+    differing += !same;
+    turned += c.diffractions > 0u;
+  }
+  EXPECT_EQ(differing, 0u) << "of " << lists[0].size();
+  if (GetParam()) {
+    EXPECT_GT(turned, 20u);
+  } else {
+    EXPECT_EQ(turned, 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(OnAndOff, DiffractionParity, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& param_info) {
+                           return param_info.param ? "On" : "Off";
+                         });
+
+}  // namespace
+}  // namespace sp
