@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "bvh/diffraction_edges.h"
@@ -138,6 +140,13 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   const BvhChanges changes = refit_bvh(bvh, moved);
   EXPECT_FALSE(changes.edges.empty());
   EXPECT_EQ(exposed_count(bvh.edges), before + 2 * 4);
+  // Found again near what moved only, the same as from scratch.
+  const auto fresh = find_exposed_edges(bvh);
+  ASSERT_EQ(fresh.size(), bvh.edges.size());
+  EXPECT_EQ(std::memcmp(fresh.data(), bvh.edges.data(), fresh.size() * sizeof(fresh[0])), 0);
+  // And back down: buried again.
+  refit_bvh(bvh, scene.vertices);
+  EXPECT_EQ(exposed_count(bvh.edges), before);
 }
 
 TEST(DiffractionModel, SinAndCosPolynomialsAreAccurateOnZeroToPi) {
@@ -310,6 +319,7 @@ Config l_corridor_config(bool diffraction) {
 }
 
 class DiffractionBackends : public test::GpuTest, public ::testing::WithParamInterface<Backend> {};
+class DiffractionMovingParts : public test::GpuTest {};
 
 TEST_P(DiffractionBackends, TheCornerGetsCuesAndTheFarLegOnlyByTurning) {
   for (bool on : {false, true}) {
@@ -405,6 +415,44 @@ TEST_P(DiffractionParity, CpuAndGpuAgreeIndicatorForIndicator) {
   } else {
     EXPECT_EQ(turned, 0u);
   }
+}
+
+// A moving part changes which edges are exposed: the block between the
+// legs, lifted out of the corridor, uncovers the walls' ends it buried.
+// Both backends must find them again (the GPU uploads the changed entries)
+// and keep agreeing.
+TEST_F(DiffractionMovingParts, BothBackendsFollowTheEdgesAMovedPartUncovers) {
+  std::vector<Indicator> lists[2];
+  std::uint64_t wall_turns[2] = {0, 0};
+  for (Backend backend : {Backend::Cpu, Backend::Gpu}) {
+    Scene scene = l_corridor();
+    scene.instance_names = {"block"};
+    scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+    for (std::size_t t = 0; t < 12; ++t) scene.triangle_instances[t] = 0;  // the block is the first box
+    Config config = l_corridor_config(true);
+    config.diffraction.reach = 1.0f;
+    World world = make_world(scene, config).value();
+    const std::uint32_t walls = world.layer_names[0] == "walls" ? 0u : 1u;
+    auto sim = make_simulator(std::move(world), backend);
+    test::Recorded before = test::run_steps(*sim, 1);
+    ASSERT_TRUE(sim->scene().set_instance_transform(0, glm::translate(glm::mat4(1.0f), {0, 1000, 0})).ok());
+    test::Recorded after = test::run_steps(*sim, 2);
+    lists[backend == Backend::Gpu] = before.indicators;
+    lists[backend == Backend::Gpu].insert(lists[backend == Backend::Gpu].end(), after.indicators.begin(),
+                                          after.indicators.end());
+    wall_turns[backend == Backend::Gpu] = after.stats.layers[walls].diffractions - before.stats.layers[walls].diffractions;
+  }
+  EXPECT_GT(wall_turns[0], 0u);
+  EXPECT_EQ(wall_turns[0], wall_turns[1]);
+  ASSERT_EQ(lists[0].size(), lists[1].size());
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < lists[0].size(); ++k) {
+    const Indicator& c = lists[0][k];
+    const Indicator& g = lists[1][k];
+    differing += !(c.kind == g.kind && c.ray_index == g.ray_index && c.diffractions == g.diffractions &&
+                   glm::distance(c.position, g.position) <= 1e-5f);
+  }
+  EXPECT_EQ(differing, 0u) << "of " << lists[0].size();
 }
 
 INSTANTIATE_TEST_SUITE_P(OnAndOff, DiffractionParity, ::testing::Bool(),

@@ -175,7 +175,18 @@ BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices) {
   if (changes.nodes.empty() && changes.triangles.empty()) return changes;  // the wide copy and edges still hold
   // Moved faces may meet at other angles, or bury or uncover an edge.
   if (!bvh.edges.empty()) {
-    next.edges = find_exposed_edges(next);
+    next.edges = bvh.edges;
+    glm::vec3 lo(SP_FAR), hi(-SP_FAR);
+    for (std::size_t i = 0; i < next.triangles.size(); ++i) {
+      if (std::memcmp(&bvh.triangles[i], &next.triangles[i], sizeof(BvhTriangle)) == 0) continue;
+      for (const BvhTriangle* t : {&bvh.triangles[i], &next.triangles[i]}) {
+        lo = glm::min(lo, glm::min(glm::min(t->v0, t->v1), t->v2));
+        hi = glm::max(hi, glm::max(glm::max(t->v0, t->v1), t->v2));
+      }
+    }
+    // Grown by the burying distance, and a weld's width for the rounding.
+    const glm::vec3 margin(kBuriedEdgeDistance + 1.0e-3f);
+    refresh_exposed_edges(next, lo - margin, hi + margin, next.edges);
     changes.edges = changed_ranges(bvh.edges, next.edges);
   }
 

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdint>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "bvh/mesh_topology.h"
 
@@ -75,24 +77,42 @@ bool buried(const Bvh& bvh, glm::vec3 p, float radius, std::uint32_t a, std::uin
 
 }  // namespace
 
-std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
+void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vector<shader::TriangleEdges>& table) {
   const std::size_t n = bvh.triangles.size();
-  std::vector<shader::TriangleEdges> table(n, shader::TriangleEdges{glm::vec3(1.0f), 0u, glm::vec3(0.0f), 0u});
-  if (n == 0 || bvh.nodes.empty()) return table;
+  if (n == 0 || bvh.nodes.empty()) return;
+  auto inside = [&](glm::vec3 p) { return glm::all(glm::lessThanEqual(lo, p)) && glm::all(glm::lessThanEqual(p, hi)); };
+  auto midpoint = [&](std::uint32_t t, std::uint32_t edge) {
+    const BvhTriangle& tri = bvh.triangles[t];
+    return 0.5f * (corner(tri, edge) + corner(tri, (edge + 1) % 3));
+  };
 
-  std::vector<glm::vec3> corners(3 * n);
-  for (std::size_t t = 0; t < n; ++t)
-    for (std::uint32_t i = 0; i < 3; ++i) corners[3 * t + i] = corner(bvh.triangles[t], i);
+  // Every triangle using an edge whose midpoint lies in the box contains
+  // that midpoint, so these are all the triangles the box's edges need.
+  std::vector<std::uint32_t> nearby;
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const BvhTriangle& tri = bvh.triangles[t];
+    const glm::vec3 tmin = glm::min(glm::min(tri.v0, tri.v1), tri.v2);
+    const glm::vec3 tmax = glm::max(glm::max(tri.v0, tri.v1), tri.v2);
+    if (glm::all(glm::lessThanEqual(lo, tmax)) && glm::all(glm::lessThanEqual(tmin, hi))) nearby.push_back(t);
+  }
+  std::vector<glm::vec3> corners(3 * nearby.size());
+  for (std::size_t k = 0; k < nearby.size(); ++k)
+    for (std::uint32_t i = 0; i < 3; ++i) corners[3 * k + i] = corner(bvh.triangles[nearby[k]], i);
   std::vector<glm::vec3> positions;
   const std::vector<std::uint32_t> ids = weld(corners, positions);
 
+  // The box's edges start unexposed; the groups below expose them again.
   std::vector<EdgeUse> uses;
-  uses.reserve(3 * n);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    if (degenerate(bvh.triangles[t])) continue;
+  uses.reserve(corners.size());
+  for (std::size_t k = 0; k < nearby.size(); ++k) {
+    const std::uint32_t t = nearby[k];
     for (std::uint32_t i = 0; i < 3; ++i) {
-      const std::uint64_t u = ids[3 * t + i], v = ids[3 * t + (i + 1) % 3];
-      if (u == v) continue;
+      if (!inside(midpoint(t, i))) continue;
+      table[t].exposed &= ~(1u << i);
+      table[t].turn_cos[static_cast<int>(i)] = 1.0f;
+      table[t].turn_sin[static_cast<int>(i)] = 0.0f;
+      const std::uint64_t u = ids[3 * k + i], v = ids[3 * k + (i + 1) % 3];
+      if (degenerate(bvh.triangles[t]) || u == v) continue;
       uses.push_back({(std::min(u, v) << 32) | std::max(u, v), t, i});
     }
   }
@@ -104,18 +124,14 @@ std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
     entry.turn_cos[static_cast<int>(use.edge)] = turn_cos;
     entry.turn_sin[static_cast<int>(use.edge)] = turn_sin;
   };
-  auto midpoint = [&](const EdgeUse& use) {
-    const BvhTriangle& tri = bvh.triangles[use.triangle];
-    return 0.5f * (corner(tri, use.edge) + corner(tri, (use.edge + 1) % 3));
-  };
-
   for (std::size_t first = 0; first < uses.size();) {
     std::size_t last = first + 1;
     while (last < uses.size() && uses[last].key == uses[first].key) ++last;
     const std::size_t count = last - first;
     if (count == 1) {
       const EdgeUse& a = uses[first];
-      if (!buried(bvh, midpoint(a), kBuriedEdgeDistance, a.triangle, a.triangle)) expose(a, -1.0f, 0.0f);
+      if (!buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, a.triangle))
+        expose(a, -1.0f, 0.0f);
     } else if (count == 2) {
       const EdgeUse& a = uses[first];
       const EdgeUse& b = uses[first + 1];
@@ -129,7 +145,7 @@ std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
       const float tolerance = 1.0e-6f * glm::length(edge);
       const float turn_cos = std::clamp(glm::dot(ta.normal, tb.normal), -1.0f, 1.0f);
       if (behind_a < -tolerance && behind_b < -tolerance && turn_cos < 1.0f - 1.0e-6f &&
-          !buried(bvh, midpoint(a), kBuriedEdgeDistance, a.triangle, b.triangle)) {
+          !buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, b.triangle)) {
         const float turn_sin = std::sqrt(std::max(0.0f, 1.0f - turn_cos * turn_cos));
         expose(a, turn_cos, turn_sin);
         expose(b, turn_cos, turn_sin);
@@ -137,6 +153,13 @@ std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
     }
     first = last;
   }
+}
+
+std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
+  std::vector<shader::TriangleEdges> table(bvh.triangles.size(),
+                                           shader::TriangleEdges{glm::vec3(1.0f), 0u, glm::vec3(0.0f), 0u});
+  if (bvh.nodes.empty()) return table;
+  refresh_exposed_edges(bvh, bvh.nodes[0].bmin, bvh.nodes[0].bmax, table);
   return table;
 }
 

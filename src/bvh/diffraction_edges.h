@@ -23,4 +23,12 @@ inline constexpr float kBuriedEdgeDistance = 0.01f;
 // analyse_mesh.
 std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh);
 
+// Finds again, in `table` (find_exposed_edges' answer for this tree before
+// some triangles moved), the edges whose midpoints lie in the box [lo, hi],
+// leaving the rest: after a refit, the box around the moved triangles' old
+// and new places, grown by kBuriedEdgeDistance, holds every edge that can
+// have changed. Same answer as find_exposed_edges, in time that grows with
+// the triangles near the box rather than with the scene.
+void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vector<shader::TriangleEdges>& table);
+
 }  // namespace sp
