@@ -32,7 +32,7 @@ using spbench::CommandLine;
 constexpr const char* kUsage =
     "usage: bench_step [--scene FILE|gen:TRIANGLES] [--backends cpu,gpu] [--budgets A,B,...]\n"
     "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
-    "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json]\n"
+    "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json] [--diffraction 0|1]\n"
     "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
     "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
     "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
@@ -40,7 +40,8 @@ constexpr const char* kUsage =
     "  --max-seconds  stop a run's measuring after S seconds, its warm-up after S/5 (default 0: no limit)\n"
     "  --pattern      paper: every source plays every 0.25 s for 0.1 s, phases staggered (default);\n"
     "                 burst: every 0.25 s for one step; scene: as the scene file says\n"
-    "  --validate-steps  frames each backend runs for the agreement check (default 10; 0 skips it)\n";
+    "  --validate-steps  frames each backend runs for the agreement check (default 10; 0 skips it)\n"
+    "  --diffraction  1: diffraction on, its other keys at their defaults (default 0)\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
@@ -53,6 +54,7 @@ struct Options {
   spbench::Pattern pattern = spbench::Pattern::Paper;
   std::uint32_t validate_steps = 10;
   std::string json;
+  bool diffraction = false;
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -69,6 +71,7 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--threads") o.threads = cli.to_uint(value, flag);
     else if (flag == "--validate-steps") o.validate_steps = cli.to_uint(value, flag);
     else if (flag == "--json") o.json = value;
+    else if (flag == "--diffraction") o.diffraction = cli.to_uint(value, flag) != 0;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else return false;
     return true;
@@ -93,6 +96,7 @@ int run(const CommandLine& cli, const Options& options) {
   sp::Scene scene = spbench::load_scene_or_exit(cli, options.scene);
   sp::Config config;
   config.max_bounces = options.bounces;
+  config.diffraction.enabled = options.diffraction;  // its other keys at their defaults
   spbench::apply_pattern(scene, options.pattern, config.dt);
   const unsigned threads = spbench::resolve_threads(options.threads);
 
@@ -100,6 +104,7 @@ int run(const CommandLine& cli, const Options& options) {
               options.scene.c_str(), scene.triangle_count(), scene.sources.size(),
               spbench::pattern_name(options.pattern), options.bounces, threads);
   std::printf("host: %s\n", spbench::host_description().c_str());
+  std::printf("diffraction: %s\n", options.diffraction ? "on" : "off");
   config.ray_budget = 1;
   auto probe_world = sp::make_world(scene, config);
   if (!probe_world) {

@@ -1,6 +1,8 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
+#include "bvh/diffraction_edges.h"
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
@@ -15,7 +17,9 @@ constexpr const char* kHelp =
     "\n"
     "Prints the scene's triangles, layers (with triangle counts and the acoustic\n"
     "properties they resolve to), sources, listener, and BVH node count, depth and\n"
-    "build time. --config applies a configuration's layers, sources and listener.\n";
+    "build time, and the exposed edges sound may bend round (diffraction) with the\n"
+    "time it takes to find them. --config applies a configuration's layers, sources,\n"
+    "listener and diffraction edge angle.\n";
 
 void print_vec(glm::vec3 v) { std::printf("(%.3f, %.3f, %.3f)", double(v.x), double(v.y), double(v.z)); }
 
@@ -62,6 +66,21 @@ int run_info(const std::vector<std::string>& args) {
   std::printf(" (%s)\n", listener_from);
   std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.bvh.nodes.size(), world.bvh.depth,
               world.bvh.build_ms);
+  // Each exposed edge is held by one triangle (a free boundary) or two.
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.bvh);
+  const double edges_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  std::size_t boundary = 0, convex = 0;
+  const float cos_max = std::cos(config.diffraction.edge_angle * 3.14159265f / 180.0f);
+  for (const shader::TriangleEdges& e : edges)
+    for (int i = 0; i < 3; ++i) {
+      if (((e.exposed >> i) & 1u) == 0u) continue;
+      if (e.turn_cos[i] <= -1.0f) ++boundary;
+      else if (e.turn_cos[i] <= cos_max) ++convex;
+    }
+  std::printf("diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found in %.3f ms (diffraction %s)\n",
+              double(config.diffraction.edge_angle), convex / 2, boundary, edges_ms,
+              config.diffraction.enabled ? "on" : "off");
   return 0;
 }
 
