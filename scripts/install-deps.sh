@@ -10,6 +10,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libglm-dev
   libgtest-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libglfw3-dev libimgui-dev xvfb xauth
 )
 if [ "${1:-}" = fuzz ]; then
   packages+=(clang libclang-rt-14-dev)

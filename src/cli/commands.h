@@ -11,5 +11,6 @@ int run_simulate(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_check(const std::vector<std::string>& args);
+int run_view(const std::vector<std::string>& args);
 
 }  // namespace sp::cli

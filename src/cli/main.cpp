@@ -21,6 +21,7 @@ constexpr const char* kUsage =
     "  info SCENE       print triangles, layers, sources, listener and BVH facts\n"
     "  render SCENE     simulate N steps, then draw the scene and its indicators to a PNG\n"
     "  check SCENE      does the level suit the model? open meshes, flipped faces, units, a probe\n"
+    "  view SCENE       a window: fly through the level and watch sound travel, live\n"
     "\n"
     "Run 'soundpaint <command> --help' for the options of a command.\n";
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     if (command == "info") return sp::cli::run_info(args);
     if (command == "render") return sp::cli::run_render(args);
     if (command == "check") return sp::cli::run_check(args);
+    if (command == "view") return sp::cli::run_view(args);
     std::fprintf(stderr, "soundpaint: error: unknown command '%s' (try 'soundpaint --help')\n", command.c_str());
     return 2;
   } catch (const sp::Exception& e) {

@@ -1,6 +1,8 @@
 #include "cli/options.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 
 #include "soundpaint/result.h"
 
@@ -64,5 +66,30 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::set<std::
   }
   return parsed;
 }
+
+glm::vec3 parse_vec3(const std::string& option, const std::string& text) {
+  glm::vec3 v(0.0f);
+  const char* cursor = text.c_str();
+  for (int k = 0; k < 3; ++k) {
+    char* end = nullptr;
+    const float value = std::strtof(cursor, &end);
+    const char expected = k < 2 ? ',' : '\0';
+    if (end == cursor || *end != expected || !std::isfinite(value))
+      throw Exception(ErrorCode::InvalidArgument,
+                      "option " + option + ": expected three finite numbers x,y,z, got '" + text + "'");
+    v[k] = value;
+    cursor = end + 1;
+  }
+  return v;
+}
+
+float parse_fov(const std::string& text) {
+  char* end = nullptr;
+  const float value = std::strtof(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(value > 0.0f && value < 180.0f))
+    throw Exception(ErrorCode::InvalidArgument, "option --fov: expected degrees in (0, 180), got '" + text + "'");
+  return value;
+}
+
 
 }  // namespace sp::cli

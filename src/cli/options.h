@@ -2,6 +2,8 @@
 // options, --flags and positionals, with errors that name the option.
 #pragma once
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -25,5 +27,10 @@ struct ParsedArgs {
 // sp::Exception(InvalidArgument) on unknown options or missing values.
 ParsedArgs parse_args(const std::vector<std::string>& args, const std::set<std::string>& value_options,
                       const std::set<std::string>& flag_options);
+
+// "x,y,z": three finite numbers (--camera-pos, --look-at); throws naming `option`.
+glm::vec3 parse_vec3(const std::string& option, const std::string& text);
+// Degrees in (0, 180) (--fov); throws naming the option.
+float parse_fov(const std::string& text);
 
 }  // namespace sp::cli

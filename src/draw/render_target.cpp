@@ -4,46 +4,13 @@
 #include <string>
 
 #include "draw/image_barrier.h"
+#include "draw/rendering.h"
 #include "soundpaint/result.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
-namespace {
-
-// How a pass uses one attachment.
-struct AttachmentUse {
-  VkImageView view;
-  VkImageLayout layout;
-  VkAttachmentLoadOp load;
-  VkAttachmentStoreOp store;
-};
-
-VkRenderingAttachmentInfo attachment(const AttachmentUse& use) {
-  VkRenderingAttachmentInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-  info.imageView = use.view;
-  info.imageLayout = use.layout;
-  info.loadOp = use.load;
-  info.storeOp = use.store;
-  return info;
-}
-
-void begin_rendering(VkCommandBuffer cmd, VkExtent2D extent, const VkRenderingAttachmentInfo& color,
-                     const VkRenderingAttachmentInfo& depth) {
-  VkRenderingInfo rendering{};
-  rendering.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
-  rendering.renderArea = {{0, 0}, extent};
-  rendering.layerCount = 1;
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachments = &color;
-  rendering.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &rendering);
-}
-
-}  // namespace
-
 DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::uint32_t height, VkFormat format,
                          VkImageUsageFlags usage, VkImageAspectFlags aspect, const char* name) {
   const VkDevice device = context.device();

@@ -50,10 +50,15 @@ bool has_instance_extension(const char* layer, const char* name) {
 
 // `messages` non-null: validation on, with a messenger chained into the
 // create info so that vkCreateInstance/vkDestroyInstance are watched too.
-VkInstance create_instance(MessageLog* messages) {
+VkInstance create_instance(MessageLog* messages, const std::vector<std::string>& wanted) {
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   VkInstanceCreateFlags flags = 0;
+  for (const std::string& name : wanted) {
+    if (!has_instance_extension(nullptr, name.c_str()))
+      throw Exception(ErrorCode::Vulkan, "the Vulkan instance extension " + name + " is not available");
+    extensions.push_back(name.c_str());
+  }
 
   if (messages != nullptr) {
     if (!has_instance_layer(kValidationLayer)) {
@@ -182,7 +187,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         const bool validation = settings.validation || env_is("SOUNDPAINT_VALIDATION", "1");
         if (validation) context->messages_ = std::make_unique<Messages>();
 
-        context->instance_ = create_instance(context->messages_.get());
+        context->instance_ = create_instance(context->messages_.get(), settings.instance_extensions);
         const VkInstance instance = context->instance_;
         if (validation) {
           const auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -221,11 +226,29 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         queue_info.queueFamilyIndex = choice.queue_family;
         queue_info.queueCount = 1;
         queue_info.pQueuePriorities = &priority;
+        std::vector<const char*> device_extensions;
+        if (!settings.device_extensions.empty()) {
+          std::uint32_t count = 0;
+          SP_VK_CHECK(vkEnumerateDeviceExtensionProperties(choice.device, nullptr, &count, nullptr));
+          std::vector<VkExtensionProperties> available(count);
+          SP_VK_CHECK(vkEnumerateDeviceExtensionProperties(choice.device, nullptr, &count, available.data()));
+          for (const std::string& name : settings.device_extensions) {
+            const bool found = std::any_of(available.begin(), available.end(), [&](const VkExtensionProperties& e) {
+              return name == e.extensionName;
+            });
+            if (!found)
+              throw Exception(ErrorCode::Vulkan, std::string(context->properties_.deviceName) +
+                                                     " lacks the device extension " + name);
+            device_extensions.push_back(name.c_str());
+          }
+        }
         VkDeviceCreateInfo device_info{};
         device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
         device_info.pNext = &enabled.features;
         device_info.queueCreateInfoCount = 1;
         device_info.pQueueCreateInfos = &queue_info;
+        device_info.enabledExtensionCount = static_cast<std::uint32_t>(device_extensions.size());
+        device_info.ppEnabledExtensionNames = device_extensions.data();
         SP_VK_CHECK(vkCreateDevice(choice.device, &device_info, nullptr, &context->device_));
         vkGetDeviceQueue(context->device_, choice.queue_family, 0, &context->queue_);
         context->set_name(VK_OBJECT_TYPE_DEVICE, context->device_, "soundpaint device");

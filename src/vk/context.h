@@ -23,6 +23,10 @@ struct ContextSettings {
   // SOUNDPAINT_DEVICE environment variable, else the best device by type
   // (discrete > integrated > virtual > CPU).
   std::string device_name;
+  // Further extensions to enable (the viewer's surface and swapchain);
+  // missing ones are errors naming them.
+  std::vector<std::string> instance_extensions;
+  std::vector<std::string> device_extensions;
 };
 
 // A device the host application created and keeps (Visualizer). soundpaint

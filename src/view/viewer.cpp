@@ -1,0 +1,616 @@
+#include "view/viewer.h"
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "draw/image_barrier.h"
+#include "vk/barriers.h"
+#include "draw/png_writer.h"
+#include "draw/rendering.h"
+#include "draw/scene_mesh.h"
+#include "draw/scene_pass.h"
+#include "soundpaint/bvh.h"
+#include "soundpaint/config.h"
+#include "soundpaint/display.h"
+#include "soundpaint/visualizer.h"
+#include "view/fly_camera.h"
+#include "view/swapchain.h"
+#include "view/ui_panel.h"
+#include "view/window.h"
+#include "vk/buffer.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace sp::view {
+
+const char* const kControls =
+    "  W A S D       fly forward, left, back, right (Shift: faster); Q E: down, up\n"
+    "  right mouse   hold and drag to look around\n"
+    "  left click    place a source of the panel's category on the surface under the cursor\n"
+    "  Shift+click   play the source nearest the surface under the cursor for a second\n"
+    "  Space         pause / resume the simulation;  N: one step while paused\n"
+    "  B             switch the backend (GPU <-> CPU)\n"
+    "  P             pin the listener where it is / let it follow the camera again\n"
+    "  F1            hide / show the panel;  Esc: quit\n"
+    "  The panel also sets the ray budget, diffraction and every display setting;\n"
+    "  a --config file is reloaded when it changes.\n";
+
+namespace {
+
+constexpr std::uint32_t kFramesInFlight = 2;
+// Timestamps per frame: simulation, scene pass and indicator pass, each
+// begin and end.
+constexpr std::uint32_t kQueriesPerFrame = 6;
+constexpr float kFlySpeed = 4.0f;  // metres a second; Shift: 4x
+
+class Surface {
+ public:
+  Surface(VkInstance instance, VkSurfaceKHR surface) : instance_(instance), surface_(surface) {}
+  ~Surface() { vkDestroySurfaceKHR(instance_, surface_, nullptr); }
+  Surface(const Surface&) = delete;
+  Surface& operator=(const Surface&) = delete;
+  VkSurfaceKHR get() const { return surface_; }
+
+ private:
+  VkInstance instance_;
+  VkSurfaceKHR surface_;
+};
+
+// What the viewer can change and rebuild a visualizer from.
+struct Session {
+  Scene scene;
+  Config config;
+  BackendChoice backend = BackendChoice::Auto;
+  std::vector<SourceDesc> placed;  // sources placed by clicking, kept across rebuilds
+  bool listener_pinned = false;
+};
+
+std::filesystem::file_time_type modified(const std::optional<std::string>& path) {
+  std::error_code error;
+  if (!path) return {};
+  const auto time = std::filesystem::last_write_time(*path, error);
+  return error ? std::filesystem::file_time_type{} : time;
+}
+
+std::vector<std::string> category_names() {
+  std::vector<std::string> names;
+  for (const BuiltinCategory& c : builtin_categories()) names.emplace_back(c.name);
+  return names;
+}
+
+// The level as one draw, and the simulation and indicators as a visualizer
+// on the viewer's own device: rebuilt together when the config, the ray
+// budget, diffraction or the backend change.
+struct Painting {
+  std::unique_ptr<draw::ScenePass> scene_pass;
+  std::unique_ptr<Visualizer> visualizer;
+};
+
+Painting paint(vk::Context& context, const Swapchain& swapchain, Session& session) {
+  World world = make_world(session.scene, session.config).value();
+  Painting painting;
+  painting.scene_pass = std::make_unique<draw::ScenePass>(context, draw::build_scene_mesh(world, true),
+                                                          swapchain.format(), Swapchain::kDepthFormat);
+  const HostVulkan host{.instance = context.instance(),
+                        .physical_device = context.physical_device(),
+                        .device = context.device(),
+                        .queue_family = context.queue_family()};
+  const DrawTarget target{.color_format = swapchain.format(), .depth_format = Swapchain::kDepthFormat};
+  VisualizerSettings settings;
+  settings.backend = session.backend;
+  painting.visualizer = Visualizer::create(host, target, std::move(world), settings).value();
+  for (const SourceDesc& source : session.placed) painting.visualizer->scene().add_source(source).value();
+  painting.visualizer->set_scene_depth(swapchain.depth_views()).value();
+  return painting;
+}
+
+VkCommandBuffer allocate_command_buffer(VkDevice device, VkCommandPool pool) {
+  VkCommandBufferAllocateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  info.commandPool = pool;
+  info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  info.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkAllocateCommandBuffers(device, &info, &cmd));
+  return cmd;
+}
+
+// The scene pass clears and writes depth; the indicator pass then tests
+// against it and samples it read-only (clipping spots to surfaces).
+void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_view, VkExtent2D extent, bool first) {
+  VkRenderingAttachmentInfo color = draw::attachment(
+      {color_view, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+       first ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE});
+  // The scene pass's clear colour is linear, as the sRGB swapchain expects.
+  std::memcpy(color.clearValue.color.float32, draw::ScenePass::kClearColor, sizeof(float) * 4);
+  VkRenderingAttachmentInfo depth = draw::attachment(
+      first ? draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                  VK_ATTACHMENT_STORE_OP_STORE}
+            : draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD,
+                                  VK_ATTACHMENT_STORE_OP_NONE});
+  depth.clearValue.depthStencil = {1.0f, 0};
+  draw::begin_rendering(cmd, extent, color, depth);
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f,
+                            1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+// The frame loop's state: the device, the window's swapchain, the frames in
+// flight, and what is painted.
+class Viewer {
+ public:
+  Viewer(const ViewerOptions& options, Window& window, Session session);
+  ~Viewer();
+  void run();
+  std::uint32_t validation_messages() const { return context_->validation_message_count(); }
+
+ private:
+  void handle_input(float seconds);
+  void place_or_play(bool play);
+  void rebuild();
+  void recreate_swapchain();
+  void read_timestamps(std::uint32_t slot);
+  bool record_and_present(std::uint32_t slot, bool last, double dt);
+  void write_screenshot();
+
+  const ViewerOptions& options_;
+  Window& window_;
+  Session session_;
+  std::unique_ptr<vk::Context> context_;
+  std::unique_ptr<Surface> surface_;
+  std::unique_ptr<Swapchain> swapchain_;
+  vk::UniqueCommandPool pool_;
+  std::array<VkCommandBuffer, kFramesInFlight> commands_{};
+  std::array<vk::UniqueFence, kFramesInFlight> fences_;
+  std::array<UniqueSemaphore, kFramesInFlight> acquired_;
+  std::array<bool, kFramesInFlight> submitted_{};
+  vk::UniqueQueryPool queries_;
+  double timestamp_ms_ = 0.0;  // milliseconds per timestamp tick
+  vk::Buffer screenshot_buffer_;
+  VkExtent2D screenshot_extent_{};
+  Painting painting_;
+  std::unique_ptr<UiPanel> panel_;
+  PanelState panel_state_;
+  PanelStats stats_;
+  std::vector<std::string> categories_ = category_names();
+  FlyCamera camera_;
+  glm::vec2 last_cursor_{0.0f};
+  bool paused_ = false;
+  bool step_once_ = false;
+  bool rebuild_ = false;
+  bool swapchain_stale_ = false;
+  std::filesystem::file_time_type config_time_;
+  std::uint64_t frame_ = 0;
+};
+
+Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
+    : options_(options), window_(window), session_(std::move(session)) {
+  vk::ContextSettings settings;
+  settings.instance_extensions = Window::required_instance_extensions();
+  settings.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  context_ = vk::Context::create(settings).value();
+  surface_ = std::make_unique<Surface>(context_->instance(), window_.create_surface(context_->instance()));
+  swapchain_ = std::make_unique<Swapchain>(*context_, surface_->get(), window_.framebuffer_size());
+
+  const VkDevice device = context_->device();
+  VkCommandPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool_info.queueFamilyIndex = context_->queue_family();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  SP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
+  pool_ = vk::UniqueCommandPool(device, pool);
+  for (std::uint32_t i = 0; i < kFramesInFlight; ++i) {
+    commands_[i] = allocate_command_buffer(device, pool);
+    VkFenceCreateInfo fence_info{};
+    fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    VkFence fence = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateFence(device, &fence_info, nullptr, &fence));
+    fences_[i] = vk::UniqueFence(device, fence);
+    VkSemaphoreCreateInfo semaphore_info{};
+    semaphore_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
+    VkSemaphore semaphore = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateSemaphore(device, &semaphore_info, nullptr, &semaphore));
+    acquired_[i] = UniqueSemaphore(device, semaphore);
+  }
+  // Timestamps are optional; this limit promises them on every graphics and
+  // compute queue.
+  if (context_->properties().limits.timestampComputeAndGraphics) {
+    VkQueryPoolCreateInfo query_info{};
+    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    query_info.queryCount = kQueriesPerFrame * kFramesInFlight;
+    VkQueryPool query_pool = VK_NULL_HANDLE;
+    SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
+    queries_ = vk::UniqueQueryPool(device, query_pool);
+    timestamp_ms_ = double(context_->properties().limits.timestampPeriod) * 1e-6;
+  }
+
+  painting_ = paint(*context_, *swapchain_, session_);
+  World probe = make_world(session_.scene, session_.config).value();
+  const VkExtent2D extent = swapchain_->extent();
+  camera_ = FlyCamera::from(
+      draw::make_view_camera(session_.scene.camera, probe, options_.camera, extent.width, extent.height));
+  panel_state_.ray_budget = session_.config.ray_budget;
+  panel_state_.diffraction = session_.config.diffraction.enabled;
+  panel_state_.display = painting_.visualizer->display();
+  panel_ = std::make_unique<UiPanel>(window_.handle(), context_->instance(), context_->physical_device(), device,
+                                     context_->queue_family(), context_->queue(), swapchain_->format(),
+                                     swapchain_->image_count(), swapchain_->views(), extent);
+  panel_->set_visible(options_.panel);
+  stats_.device = context_->description();
+  config_time_ = modified(options_.config_path);
+  last_cursor_ = window_.cursor();
+}
+
+Viewer::~Viewer() {
+  // Frames in flight use everything below; a CPU step in progress is
+  // finished before its visualizer goes.
+  if (context_) (void)vkDeviceWaitIdle(context_->device());
+  if (painting_.visualizer) (void)painting_.visualizer->wait_for_simulation();
+}
+
+void Viewer::rebuild() {
+  SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
+  (void)painting_.visualizer->wait_for_simulation();
+  const DisplaySettings display = painting_.visualizer->display();
+  painting_ = Painting{};
+  session_.config.display = display;
+  painting_ = paint(*context_, *swapchain_, session_);
+  rebuild_ = false;
+}
+
+void Viewer::recreate_swapchain() {
+  window_.wait_while_minimised();
+  if (window_.should_close()) return;
+  SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
+  swapchain_->recreate(window_.framebuffer_size());
+  painting_.visualizer->set_scene_depth(swapchain_->depth_views()).value();
+  panel_->resize(swapchain_->views(), swapchain_->extent());
+  swapchain_stale_ = false;
+}
+
+void Viewer::place_or_play(bool play) {
+  const VkExtent2D extent = swapchain_->extent();
+  const glm::vec3 dir = camera_.ray_through(window_.cursor(), extent.width, extent.height);
+  const World& world = painting_.visualizer->scene().world();
+  const HitInfo hit = closest_hit(world.bvh, camera_.eye, dir, 0.0f, 1000.0f);
+  if (hit.triangle == SP_INVALID) return;
+  const glm::vec3 point = camera_.eye + dir * hit.t;
+  SoundScene& scene = painting_.visualizer->scene();
+  if (play) {
+    std::optional<std::uint32_t> nearest;
+    float best = 2.0f;  // metres: farther sources are not "this one"
+    for (std::uint32_t id = 0; id < world.sources.size(); ++id) {
+      if (!scene.has_source(id)) continue;
+      const float d = glm::distance(world.sources[id].position, point);
+      if (d < best) best = d, nearest = id;
+    }
+    if (nearest) (void)scene.play(*nearest, 1.0);
+    return;
+  }
+  SourceDesc source;
+  source.position = point - dir * 0.25f;  // just off the surface, on the viewer's side
+  source.category = categories_[static_cast<std::size_t>(panel_state_.category) % categories_.size()];
+  source.max_distance = 30.0f;
+  if (scene.add_source(source)) session_.placed.push_back(source);
+}
+
+void Viewer::handle_input(float seconds) {
+  if (!panel_->wants_keyboard()) {
+    if (window_.key_pressed(GLFW_KEY_ESCAPE)) window_.request_close();
+    if (window_.key_pressed(GLFW_KEY_SPACE)) paused_ = !paused_;
+    if (window_.key_pressed(GLFW_KEY_N)) step_once_ = true;
+    if (window_.key_pressed(GLFW_KEY_P)) session_.listener_pinned = !session_.listener_pinned;
+    if (window_.key_pressed(GLFW_KEY_F1)) panel_->set_visible(!panel_->visible());
+    if (window_.key_pressed(GLFW_KEY_B)) {
+      session_.backend = painting_.visualizer->backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
+      rebuild_ = true;
+    }
+    glm::vec3 axes(0.0f);
+    axes.z += window_.key_down(GLFW_KEY_W) ? 1.0f : 0.0f;
+    axes.z -= window_.key_down(GLFW_KEY_S) ? 1.0f : 0.0f;
+    axes.x += window_.key_down(GLFW_KEY_D) ? 1.0f : 0.0f;
+    axes.x -= window_.key_down(GLFW_KEY_A) ? 1.0f : 0.0f;
+    axes.y += window_.key_down(GLFW_KEY_E) ? 1.0f : 0.0f;
+    axes.y -= window_.key_down(GLFW_KEY_Q) ? 1.0f : 0.0f;
+    const bool fast = window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT);
+    camera_.fly(axes, fast ? 4.0f * kFlySpeed : kFlySpeed, seconds);
+  }
+  const glm::vec2 cursor = window_.cursor();
+  if (!panel_->wants_mouse()) {
+    if (window_.mouse_down(GLFW_MOUSE_BUTTON_RIGHT)) camera_.turn(cursor - last_cursor_);
+    if (window_.mouse_clicked(GLFW_MOUSE_BUTTON_LEFT))
+      place_or_play(window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT));
+  }
+  last_cursor_ = cursor;
+}
+
+void Viewer::read_timestamps(std::uint32_t slot) {
+  if (!queries_ || !submitted_[slot]) return;
+  std::array<std::uint64_t, kQueriesPerFrame> ticks{};
+  const VkResult result =
+      vkGetQueryPoolResults(context_->device(), queries_.get(), slot * kQueriesPerFrame, kQueriesPerFrame,
+                            sizeof(ticks), ticks.data(), sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT);
+  if (result != VK_SUCCESS) return;  // the fence has passed, so this is rare; keep the last figures
+  stats_.simulation_ms = double(ticks[1] - ticks[0]) * timestamp_ms_;
+  stats_.scene_ms = double(ticks[3] - ticks[2]) * timestamp_ms_;
+  stats_.indicators_ms = double(ticks[5] - ticks[4]) * timestamp_ms_;
+}
+
+bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
+  const VkDevice device = context_->device();
+  std::uint32_t image = 0;
+  VkResult acquired =
+      vkAcquireNextImageKHR(device, swapchain_->handle(), UINT64_MAX, acquired_[slot].get(), VK_NULL_HANDLE, &image);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) return false;  // nothing was signalled: recreate and try again
+  if (acquired != VK_SUBOPTIMAL_KHR) SP_VK_CHECK(acquired);
+  const VkFence fence = fences_[slot].get();
+  SP_VK_CHECK(vkResetFences(device, 1, &fence));
+
+  const VkCommandBuffer cmd = commands_[slot];
+  SP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  SP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  const std::uint32_t query = slot * kQueriesPerFrame;
+  if (queries_) vkCmdResetQueryPool(cmd, queries_.get(), query, kQueriesPerFrame);
+  auto stamp = [&](std::uint32_t k, VkPipelineStageFlags2 stage) {
+    if (queries_) vkCmdWriteTimestamp2(cmd, stage, queries_.get(), query + k);
+  };
+
+  Visualizer& visualizer = *painting_.visualizer;
+  if (!session_.listener_pinned) (void)visualizer.scene().set_listener(camera_.eye);
+  stamp(0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
+  if (!paused_ || step_once_) visualizer.record_simulation(cmd, paused_ ? session_.config.dt : dt).value();
+  step_once_ = false;
+  stamp(1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+
+  const VkImage color = swapchain_->image(image);
+  const VkImage depth = swapchain_->depth_image(image);
+  const VkPipelineStageFlags2 depth_stages =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  // WAR: the image's last reader was presentation (ordered by the acquire
+  // semaphore, waited at this stage); its contents are not kept.
+  draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  // WAR: the previous frame on this image sampled and tested its depth.
+  draw::image_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      0, depth_stages,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  const VkExtent2D extent = swapchain_->extent();
+  const draw::ViewCamera view = camera_.view_camera(extent.width, extent.height);
+  stamp(2, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
+  begin_pass(cmd, swapchain_->views()[image], swapchain_->depth_view(image), extent, true);
+  painting_.scene_pass->record(cmd, view, visualizer.scene().listener());
+  vkCmdEndRendering(cmd);
+  stamp(3, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+  // RAW: the scene's depth lands before the indicators test and sample it.
+  draw::image_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                      VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                      depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+  stamp(4, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
+  begin_pass(cmd, swapchain_->views()[image], swapchain_->depth_view(image), extent, false);
+  DrawOptions draw_options;
+  draw_options.viewport_width = extent.width;
+  draw_options.viewport_height = extent.height;
+  draw_options.scene_depth = static_cast<std::int32_t>(image);
+  visualizer.record_draw(cmd, view.view, view.projection, draw_options).value();
+  vkCmdEndRendering(cmd);
+  stamp(5, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+  panel_->record(cmd, image);
+
+  const bool screenshot = last && options_.screenshot && swapchain_->readable();
+  if (screenshot) {
+    screenshot_extent_ = extent;
+    const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
+    screenshot_buffer_ = vk::Buffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback,
+                                    "viewer screenshot");
+    // RAW: the passes' colour writes land before the copy reads the image.
+    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshot_buffer_.get(), 1, &region);
+    // Device -> host: the copy is visible to host reads after the fence.
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
+                        VK_PIPELINE_STAGE_2_NONE, 0);
+  } else {
+    // Presentation waits on the semaphore the submit signals after this.
+    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0);
+  }
+  SP_VK_CHECK(vkEndCommandBuffer(cmd));
+
+  VkSemaphoreSubmitInfo wait{};
+  wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+  wait.semaphore = acquired_[slot].get();
+  // The simulation's transfers and dispatches do not touch the image: only
+  // its first write waits for presentation to let go of it.
+  wait.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSemaphoreSubmitInfo signal{};
+  signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
+  signal.semaphore = swapchain_->rendered(image);
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo command{};
+  command.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
+  command.commandBuffer = cmd;
+  VkSubmitInfo2 submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
+  submit.waitSemaphoreInfoCount = 1;
+  submit.pWaitSemaphoreInfos = &wait;
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &command;
+  submit.signalSemaphoreInfoCount = 1;
+  submit.pSignalSemaphoreInfos = &signal;
+  SP_VK_CHECK(vkQueueSubmit2(context_->queue(), 1, &submit, fence));
+  submitted_[slot] = true;
+
+  const VkSemaphore rendered = swapchain_->rendered(image);
+  const VkSwapchainKHR swapchain = swapchain_->handle();
+  VkPresentInfoKHR present{};
+  present.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
+  present.waitSemaphoreCount = 1;
+  present.pWaitSemaphores = &rendered;
+  present.swapchainCount = 1;
+  present.pSwapchains = &swapchain;
+  present.pImageIndices = &image;
+  const VkResult presented = vkQueuePresentKHR(context_->queue(), &present);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR) {
+    swapchain_stale_ = true;
+  } else {
+    SP_VK_CHECK(presented);
+  }
+  if (screenshot) {
+    SP_VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+    write_screenshot();
+  }
+  return true;
+}
+
+void Viewer::write_screenshot() {
+  draw::RgbaImage picture;
+  picture.width = screenshot_extent_.width;
+  picture.height = screenshot_extent_.height;
+  const auto* bytes = static_cast<const std::uint8_t*>(screenshot_buffer_.mapped());
+  picture.pixels.assign(bytes, bytes + std::size_t{picture.width} * picture.height * 4);
+  const VkFormat format = swapchain_->format();
+  if (format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM) {
+    for (std::size_t i = 0; i < picture.pixels.size(); i += 4) std::swap(picture.pixels[i], picture.pixels[i + 2]);
+  }
+  draw::write_png(*options_.screenshot, picture);
+}
+
+void Viewer::run() {
+  auto previous = std::chrono::steady_clock::now();
+  while (!window_.should_close() && (options_.frames == 0 || frame_ < options_.frames)) {
+    if (options_.resize_frame > 0 && frame_ == options_.resize_frame)
+      window_.request_size(options_.resize_width, options_.resize_height);
+    window_.poll_events();
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - previous).count();
+    previous = now;
+    stats_.frame_ms = seconds * 1e3;
+    // A scripted run advances config.dt a frame, whatever the frame took.
+    const double dt = options_.frames > 0 ? session_.config.dt : std::min(seconds, 0.25);
+    handle_input(static_cast<float>(std::min(seconds, 0.1)));
+    if (window_.should_close()) break;
+
+    // The config file: reloaded when it changes (checked twice a second).
+    if (options_.config_path && frame_ % 30 == 0) {
+      const auto time = modified(options_.config_path);
+      if (time != config_time_) {
+        config_time_ = time;
+        auto reloaded = load_config(*options_.config_path);
+        if (reloaded) {
+          session_.config = std::move(reloaded.value());
+          panel_state_.ray_budget = session_.config.ray_budget;
+          panel_state_.diffraction = session_.config.diffraction.enabled;
+          panel_state_.display = session_.config.display;
+          rebuild_ = true;
+          std::fprintf(stderr, "view: reloaded %s\n", options_.config_path->c_str());
+        } else {
+          std::fprintf(stderr, "view: %s (keeping the previous config)\n", reloaded.error().message.c_str());
+        }
+      }
+    }
+    if (rebuild_) {
+      session_.config.display = panel_state_.display;
+      rebuild();
+    }
+    if (swapchain_stale_ || swapchain_->extent().width != window_.framebuffer_size().width ||
+        swapchain_->extent().height != window_.framebuffer_size().height) {
+      recreate_swapchain();
+      if (window_.should_close()) break;
+    }
+
+    const std::uint32_t slot = static_cast<std::uint32_t>(frame_ % kFramesInFlight);
+    const VkFence fence = fences_[slot].get();
+    SP_VK_CHECK(vkWaitForFences(context_->device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    read_timestamps(slot);
+
+    Visualizer& visualizer = *painting_.visualizer;
+    stats_.backend = visualizer.backend() == Backend::Gpu ? "gpu" : "cpu";
+    stats_.steps = visualizer.steps_run();
+    stats_.paused = paused_;
+    stats_.listener_pinned = session_.listener_pinned;
+    stats_.eye = camera_.eye;
+    const PanelActions actions = panel_->build(stats_, panel_state_, categories_);
+    if (actions.toggle_pause) paused_ = !paused_;
+    if (actions.single_step) step_once_ = true;
+    if (actions.toggle_pin) session_.listener_pinned = !session_.listener_pinned;
+    if (actions.switch_backend) {
+      session_.backend = visualizer.backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
+      rebuild_ = true;
+    }
+    if (actions.ray_budget_changed) {
+      session_.config.ray_budget = panel_state_.ray_budget;
+      rebuild_ = true;
+    }
+    if (actions.diffraction_changed) {
+      session_.config.diffraction.enabled = panel_state_.diffraction;
+      rebuild_ = true;
+    }
+    if (actions.display_changed) {
+      auto applied = visualizer.set_display(panel_state_.display);
+      if (!applied) std::fprintf(stderr, "view: %s\n", applied.error().message.c_str());
+    }
+
+    const bool last = options_.frames > 0 && frame_ + 1 == options_.frames;
+    if (!record_and_present(slot, last, dt)) {
+      swapchain_stale_ = true;
+      continue;  // out of date before anything was recorded: the same frame again
+    }
+    ++frame_;
+  }
+  SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
+}
+
+}  // namespace
+
+std::uint32_t run_viewer(const ViewerOptions& options) {
+  Session session;
+  session.scene = load_scene(options.scene_path, options.scene_options).value();
+  if (options.config_path) session.config = load_config(*options.config_path).value();
+  // Like render: arrows at the screen's edge unless the config says no.
+  if (!session.config.display.offscreen_arrows) session.config.display.offscreen_arrows = true;
+  if (!session.config.listener_position && !session.scene.camera) session.config.listener_position = glm::vec3(0.0f);
+  session.backend = options.backend;
+  make_world(session.scene, session.config).value();  // bad sources and the like fail before a window opens
+
+  Window window(options.width, options.height, "soundpaint view: " + options.scene_path);
+  std::uint32_t messages = 0;
+  {
+    Viewer viewer(options, window, std::move(session));
+    viewer.run();
+    messages = viewer.validation_messages();
+  }
+  return messages;
+}
+
+}  // namespace sp::view

@@ -1,0 +1,54 @@
+// The viewer's window (GLFW): creation, the Vulkan surface, and the input
+// the frame loop polls. GLFW is initialised for the window's lifetime.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <vulkan/vulkan.h>
+
+struct GLFWwindow;
+
+namespace sp::view {
+
+class Window {
+ public:
+  // Throws sp::Exception(ErrorCode::InvalidArgument) when no display can be
+  // opened, with a message that suggests `soundpaint render`.
+  Window(std::uint32_t width, std::uint32_t height, const std::string& title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  GLFWwindow* handle() const { return window_; }
+  // The instance extensions a surface of this window needs.
+  static std::vector<std::string> required_instance_extensions();
+  // The surface on `instance`; the caller destroys it before the instance.
+  VkSurfaceKHR create_surface(VkInstance instance) const;
+
+  void poll_events() const;
+  bool should_close() const;
+  void request_close() const;
+  // Framebuffer size in pixels; 0 x 0 while minimised.
+  VkExtent2D framebuffer_size() const;
+  void wait_while_minimised() const;
+  // Asks for a new client size (scripted runs and tests: without a window
+  // manager the X server grants it at once).
+  void request_size(std::uint32_t width, std::uint32_t height) const;
+
+  bool key_down(int key) const;
+  // True once per press (edge detection in the frame loop's polling).
+  bool key_pressed(int key);
+  bool mouse_down(int button) const;
+  bool mouse_clicked(int button);
+  glm::vec2 cursor() const;
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  std::vector<int> previous_keys_;  // by GLFW key code
+  int previous_buttons_ = 0;        // bit per mouse button
+};
+
+}  // namespace sp::view
