@@ -174,6 +174,38 @@ TEST_F(Host, GpuAndCpuBackendsDrawTheSamePicture) {
   EXPECT_LT(test::differing_pixels(gpu_image, cpu_image, 8, nullptr), kWidth * kHeight / 50);
 }
 
+// record_totals: what a host's panel shows. The totals after some frames
+// are those of a simulator of the same backend run for the same steps.
+TEST_F(Host, TotalsAreThoseOfASimulatorRunForTheSameSteps) {
+  for (BackendChoice choice : {BackendChoice::Cpu, BackendChoice::Gpu}) {
+    auto vis = visualizer(choice);
+    const double dt = vis->scene().world().config.dt;
+    vk::Buffer buffer(*context_, sizeof(SimulationTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback,
+                      "totals");
+    for (int frame = 0; frame < 6; ++frame) {
+      VkCommandBuffer cmd = begin();
+      ASSERT_TRUE(vis->record_simulation(cmd, dt).ok());
+      ASSERT_TRUE(vis->record_totals(cmd, buffer.get(), 0).ok());
+      SP_VK_CHECK(vkEndCommandBuffer(cmd));
+      submit_and_wait({cmd});
+    }
+    SimulationTotals totals;
+    std::memcpy(&totals, buffer.mapped(), sizeof totals);
+    ASSERT_GE(totals.steps, 4u);
+    EXPECT_EQ(totals.steps, vis->steps_run());
+    auto sim = make_simulator(mirror_room(), choice == BackendChoice::Cpu ? Backend::Cpu : Backend::Gpu);
+    for (std::uint64_t n = 0; n < totals.steps; ++n) ASSERT_TRUE(sim->step().ok());
+    const SimulationStats stats = sim->stats().value();
+    EXPECT_EQ(totals.casts, stats.casts);
+    EXPECT_EQ(totals.rays_emitted, stats.rays_emitted);
+    EXPECT_EQ(totals.indicators, stats.indicators);
+    EXPECT_GT(totals.ring_filled, 0u);
+    EXPECT_LE(totals.ring_filled, vis->scene().world().config.max_indicators);
+    EXPECT_FALSE(vis->record_totals(VK_NULL_HANDLE, buffer.get(), 0).ok());
+    EXPECT_FALSE(vis->record_totals(begin(), VK_NULL_HANDLE, 0).ok());
+  }
+}
+
 TEST_F(Host, FrameTimesBecomeFixedStepsCappedPerFrame) {
   auto gpu = visualizer(BackendChoice::Gpu);
   const double dt = mirror_room().config.dt;

@@ -83,6 +83,16 @@ struct DrawOptions {
   std::int32_t scene_depth = -1;
 };
 
+// The simulation's running totals as record_totals writes them: five
+// little-endian 64-bit counts, 40 bytes, no padding.
+struct SimulationTotals {
+  std::uint64_t steps = 0;         // steps whose results reached the ring
+  std::uint64_t casts = 0;         // forward casts and matter queries
+  std::uint64_t rays_emitted = 0;
+  std::uint64_t indicators = 0;    // every indicator created
+  std::uint64_t ring_filled = 0;   // ring slots holding an indicator (drawn while live)
+};
+
 class Visualizer {
  public:
   // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
@@ -143,6 +153,16 @@ class Visualizer {
   // first). At most 8. Only when no recorded draw is pending (after the
   // host's vkDeviceWaitIdle when it recreates its swapchain, say).
   virtual Result<bool> set_scene_depth(std::span<const VkImageView> views) = 0;
+
+  // Records a copy of the running totals as of the simulation recorded so
+  // far into `destination` (host-visible, VK_BUFFER_USAGE_TRANSFER_DST_BIT)
+  // at `offset`: sizeof(SimulationTotals) bytes, readable by the host once
+  // this command buffer's fence has signalled (the copy ends with a
+  // transfer-to-host barrier). Record it after record_simulation, outside
+  // any render pass. It never reads back itself, so frames in flight stay
+  // the host's choice: give each its own destination. Errors:
+  // InvalidArgument (null handles).
+  virtual Result<bool> record_totals(VkCommandBuffer cmd, VkBuffer destination, VkDeviceSize offset) = 0;
 
   // Blocks until the CPU backend's step in progress (if any) is finished and
   // handed over by the next record_simulation. For loading screens,

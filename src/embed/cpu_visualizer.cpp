@@ -63,6 +63,9 @@ class CpuVisualizer final : public VisualizerBase {
         throw;
       }
       if (finished != nullptr) {
+        totals_.casts += finished->counters.casts;
+        totals_.indicators += finished->indicators.size();
+        totals_.rays_emitted += running_rays_;
         upload_step(cmd, admit(finished->indicators, ring_quota_, inverse_indicator_size_));
         worker_.release();
         steps_run_ = running_step_ + 1;
@@ -78,6 +81,20 @@ class CpuVisualizer final : public VisualizerBase {
       record_display(cmd);
       return handed;
     });
+  }
+
+  Result<bool> record_totals(VkCommandBuffer cmd, VkBuffer destination, VkDeviceSize offset) override {
+    if (cmd == VK_NULL_HANDLE || destination == VK_NULL_HANDLE)
+      return Error{ErrorCode::InvalidArgument, "record_totals: the command buffer and the destination must be set"};
+    // The host knows them: the steps handed over so far.
+    SimulationTotals totals = totals_;
+    totals.steps = steps_run_;
+    totals.ring_filled = std::min<std::uint64_t>(pushed_, capacity_);
+    vkCmdUpdateBuffer(cmd, destination, offset, sizeof totals, &totals);
+    // Device -> host: the update is visible to host reads after the fence.
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    return true;
   }
 
  protected:
@@ -97,6 +114,7 @@ class CpuVisualizer final : public VisualizerBase {
     (void)scene_.update_geometry();
     StepPlan plan;
     scene_.plan(next_step_, plan);
+    running_rays_ = plan.total_rays;
     worker_.start(scene_.world().bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
     running_step_ = next_step_;
     next_step_ += 1;
@@ -134,6 +152,8 @@ class CpuVisualizer final : public VisualizerBase {
   vk::Buffer draw_args_;
   CpuStepThread worker_;  // after what its running step reads
   std::uint64_t pushed_ = 0;     // indicators ever appended to the ring
+  SimulationTotals totals_;      // casts, rays and indicators of the steps handed over
+  std::uint32_t running_rays_ = 0;  // rays of the step the worker runs
   std::uint64_t steps_run_ = 0;  // steps handed over
   std::uint64_t next_step_ = 0;  // step the worker runs next
   std::uint64_t running_step_ = 0;  // step the worker runs or ran last

@@ -312,7 +312,7 @@ PanelActions UiPanel::build(const PanelStats& stats, PanelState& state, const st
       if (stats.totals_known) {
         ImGui::Text("casts         %llu", static_cast<unsigned long long>(stats.casts));
         ImGui::Text("rays emitted  %llu", static_cast<unsigned long long>(stats.rays_emitted));
-        ImGui::Text("indicators    %llu (%u live)", static_cast<unsigned long long>(stats.indicators),
+        ImGui::Text("indicators    %llu (%u in the ring)", static_cast<unsigned long long>(stats.indicators),
                     stats.live_indicators);
       }
       ImGui::Text("eye  %.2f %.2f %.2f", static_cast<double>(stats.eye.x), static_cast<double>(stats.eye.y),

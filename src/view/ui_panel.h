@@ -31,9 +31,8 @@ struct PanelStats {
   double scene_ms = 0;       // GPU time of the scene pass
   double indicators_ms = 0;  // GPU time of the indicator pass
   std::uint64_t steps = 0, casts = 0, rays_emitted = 0, indicators = 0;  // totals so far
-  std::uint32_t live_indicators = 0;
-  // Whether the four counts above are known: sp::Visualizer reports no
-  // totals yet, so the viewer leaves them out rather than show zeros.
+  std::uint32_t live_indicators = 0;  // ring slots filled
+  // Whether the counts above are known (after the first frame's fence).
   bool totals_known = false;
   bool paused = false;
   bool listener_pinned = false;

@@ -177,6 +177,7 @@ class Viewer {
   std::array<UniqueSemaphore, kFramesInFlight> acquired_;
   std::array<bool, kFramesInFlight> submitted_{};
   vk::UniqueQueryPool queries_;
+  std::array<vk::Buffer, kFramesInFlight> totals_;  // record_totals' copy, read after the slot's fence
   double timestamp_ms_ = 0.0;  // milliseconds per timestamp tick
   vk::Buffer screenshot_buffer_;
   VkExtent2D screenshot_extent_{};
@@ -225,6 +226,8 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
     VkSemaphore semaphore = VK_NULL_HANDLE;
     SP_VK_CHECK(vkCreateSemaphore(device, &semaphore_info, nullptr, &semaphore));
     acquired_[i] = UniqueSemaphore(device, semaphore);
+    totals_[i] = vk::Buffer(*context_, sizeof(SimulationTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            vk::MemoryUsage::Readback, "viewer totals");
   }
   // Timestamps are optional; this limit promises them on every graphics and
   // compute queue.
@@ -340,7 +343,15 @@ void Viewer::handle_input(float seconds) {
 }
 
 void Viewer::read_timestamps(std::uint32_t slot) {
-  if (!queries_ || !submitted_[slot]) return;
+  if (!submitted_[slot]) return;
+  SimulationTotals totals;
+  std::memcpy(&totals, totals_[slot].mapped(), sizeof totals);
+  stats_.casts = totals.casts;
+  stats_.rays_emitted = totals.rays_emitted;
+  stats_.indicators = totals.indicators;
+  stats_.live_indicators = static_cast<std::uint32_t>(totals.ring_filled);
+  stats_.totals_known = true;
+  if (!queries_) return;
   std::array<std::uint64_t, kQueriesPerFrame> ticks{};
   const VkResult result =
       vkGetQueryPoolResults(context_->device(), queries_.get(), slot * kQueriesPerFrame, kQueriesPerFrame,
@@ -378,6 +389,7 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
   stamp(0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
   if (!paused_ || step_once_) visualizer.record_simulation(cmd, paused_ ? session_.config.dt : dt).value();
   step_once_ = false;
+  visualizer.record_totals(cmd, totals_[slot].get(), 0).value();
   stamp(1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
 
   const VkImage color = swapchain_->image(image);
