@@ -206,6 +206,33 @@ TEST_F(Host, TotalsAreThoseOfASimulatorRunForTheSameSteps) {
   }
 }
 
+// stage_timings: where a frame's simulation time went, for a host's panel.
+TEST_F(Host, StageTimingsAreMeasuredOnceAFrameHasRun) {
+  for (BackendChoice choice : {BackendChoice::Cpu, BackendChoice::Gpu}) {
+    auto vis = visualizer(choice);
+    EXPECT_FALSE(vis->stage_timings().measured);
+    const double dt = vis->scene().world().config.dt;
+    for (int frame = 0; frame < 4; ++frame) {
+      VkCommandBuffer cmd = begin();
+      ASSERT_TRUE(vis->record_simulation(cmd, 2.0 * dt).ok());
+      SP_VK_CHECK(vkEndCommandBuffer(cmd));
+      submit_and_wait({cmd});
+    }
+    const StageTimings t = vis->stage_timings();
+    ASSERT_TRUE(t.measured);
+    if (choice == BackendChoice::Gpu) {
+      EXPECT_EQ(t.steps, 2u);  // the newest frame's two steps
+      EXPECT_GT(t.trace_ms, 0.0);
+      EXPECT_GT(t.resolve_ms, 0.0);
+      for (double ms : {t.emit_ms, t.prepare_ms, t.admit_ms}) EXPECT_GE(ms, 0.0);
+      // Each stage is a part of the frame: none can exceed a whole second.
+      EXPECT_LT(t.emit_ms + t.trace_ms + t.resolve_ms + t.prepare_ms + t.admit_ms, 1000.0);
+    } else {
+      EXPECT_GT(t.cpu_step_ms, 0.0);
+    }
+  }
+}
+
 TEST_F(Host, FrameTimesBecomeFixedStepsCappedPerFrame) {
   auto gpu = visualizer(BackendChoice::Gpu);
   const double dt = mirror_room().config.dt;

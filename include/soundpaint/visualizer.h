@@ -93,6 +93,21 @@ struct SimulationTotals {
   std::uint64_t ring_filled = 0;   // ring slots holding an indicator (drawn while live)
 };
 
+// Where the simulation's time went in the newest frame the device has
+// finished (stage_timings). GPU backend: GPU time of each kernel, summed
+// over that frame's steps, from timestamps around its dispatches. CPU
+// backend: the wall time of the last step on the worker threads.
+struct StageTimings {
+  bool measured = false;  // false until such a frame (or step) exists, or without timestamp support
+  std::uint32_t steps = 0;
+  double emit_ms = 0.0;
+  double trace_ms = 0.0;     // closest-hit casts and matter queries
+  double resolve_ms = 0.0;   // the ray model: indicators, reflect, penetrate, diffract
+  double prepare_ms = 0.0;   // the next iteration's indirect arguments
+  double admit_ms = 0.0;     // the ring's admission of the step's indicators
+  double cpu_step_ms = 0.0;  // CPU backend
+};
+
 class Visualizer {
  public:
   // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
@@ -163,6 +178,11 @@ class Visualizer {
   // the host's choice: give each its own destination. Errors:
   // InvalidArgument (null handles).
   virtual Result<bool> record_totals(VkCommandBuffer cmd, VkBuffer destination, VkDeviceSize offset) = 0;
+
+  // The per-stage timings of the newest frame whose timestamps the device
+  // has written (the GPU backend keeps the last 8 frames' worth). Never
+  // waits; `measured` is false until there is one.
+  virtual StageTimings stage_timings() const = 0;
 
   // Blocks until the CPU backend's step in progress (if any) is finished and
   // handed over by the next record_simulation. For loading screens,

@@ -1,5 +1,7 @@
 #include "embed/cpu_step_thread.h"
 
+#include <chrono>
+
 namespace sp::embed {
 
 CpuStepThread::CpuStepThread(unsigned threads, std::size_t layer_count)
@@ -48,6 +50,11 @@ void CpuStepThread::release() {
   if (state_ == State::Done) state_ = State::Idle;
 }
 
+double CpuStepThread::last_step_ms() const {
+  std::lock_guard lock(mutex_);
+  return last_step_ms_;
+}
+
 void CpuStepThread::wait() {
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return state_ != State::Running; });
@@ -60,12 +67,15 @@ void CpuStepThread::loop() {
     if (state_ != State::Running) return;  // quit while idle
     lock.unlock();
     std::exception_ptr error;
+    const auto started = std::chrono::steady_clock::now();
     try {
       runner_.run(*bvh_, layers_, plan_, params_, output_);
     } catch (...) {
       error = std::current_exception();
     }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
     lock.lock();
+    last_step_ms_ = ms;
     error_ = error;
     state_ = State::Done;
     changed_.notify_all();

@@ -31,6 +31,8 @@ class CpuStepThread {
   const CpuStepOutput* poll();
   void release();  // the output was used: idle again
   void wait();     // blocks until the running step (if any) finished
+  // Wall milliseconds of the last finished step, 0 before the first.
+  double last_step_ms() const;
 
  private:
   enum class State { Idle, Running, Done };
@@ -46,6 +48,7 @@ class CpuStepThread {
   StepPlan plan_;
   shader::SimParams params_{};
   CpuStepOutput output_;
+  double last_step_ms_ = 0.0;
   std::exception_ptr error_;
   std::thread thread_;  // last: starts after the members it uses exist
 };

@@ -83,6 +83,14 @@ class CpuVisualizer final : public VisualizerBase {
     });
   }
 
+  StageTimings stage_timings() const override {
+    StageTimings timings;
+    timings.cpu_step_ms = worker_.last_step_ms();
+    timings.measured = steps_run_ > 0;
+    timings.steps = timings.measured ? 1u : 0u;
+    return timings;
+  }
+
   Result<bool> record_totals(VkCommandBuffer cmd, VkBuffer destination, VkDeviceSize offset) override {
     if (cmd == VK_NULL_HANDLE || destination == VK_NULL_HANDLE)
       return Error{ErrorCode::InvalidArgument, "record_totals: the command buffer and the destination must be set"};

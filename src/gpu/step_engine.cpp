@@ -74,7 +74,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                            VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    record_step_dispatches(cmd, resources_);
+    record_step_dispatches(cmd, resources_, options.stages);
   }
 
   // RAW: the ring and the draw arguments the last prepare wrote reach the

@@ -11,6 +11,7 @@
 
 #include "gpu/gpu_resources.h"
 #include "gpu/gpu_simulator.h"
+#include "gpu/stage_queries.h"
 #include "sim/step_plan.h"
 #include "soundpaint/simulation.h"
 #include "vk/context.h"
@@ -26,10 +27,13 @@ struct RecordOptions {
   // semaphores order the draw instead.
   bool graphics_queue = true;
   VkQueryPool timestamps = VK_NULL_HANDLE;  // 2 queries: before and after, or none
+  StageQueries* stages = nullptr;           // timestamps around each step's kernels, or none
 };
 
 class StepEngine {
  public:
+  // Wavefront iterations every step records (2 * max_bounces + 1).
+  std::uint32_t iterations() const { return resources_.iterations; }
   // Throws sp::Exception (LimitExceeded when a buffer exceeds a device limit).
   StepEngine(vk::Context& context, const SoundScene& scene);
 

@@ -17,13 +17,22 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
 
 }  // namespace
 
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, StageQueries* stages) {
+  if (stages != nullptr && stages->next + stage_queries_per_step(r.iterations) > stages->end) stages = nullptr;
+  // After the kernels before it have finished (compute-shader stage).
+  auto stamp = [&](StageKernel kind) {
+    if (stages == nullptr) return;
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, stages->pool, stages->next++);
+    stages->kinds.push_back(kind);
+  };
+  stamp(StageKernel::Start);
   VkDescriptorSet set = r.bindings.set();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernels.emit.layout(), 0, 1, &set, 0, nullptr);
 
   bind(cmd, r, r.kernels.emit, 0, 0);
   const std::uint32_t emit_threads = std::max(r.max_rays, r.layer_count * SP_COUNTERS_PER_LAYER);
   vkCmdDispatch(cmd, (emit_threads + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE, 1, 1);
+  stamp(StageKernel::Emit);
   // Emitted rays, queue 0 and its indirect arguments feed the first trace.
   vk::compute_to_compute(cmd);
 
@@ -35,14 +44,17 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
     // The two write the hits of disjoint rays: no barrier between them.
     bind(cmd, r, r.kernels.trace_matter, queue_in, 0);
     vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, resolving_groups_x));
+    stamp(StageKernel::Trace);
     // Hits written by trace and trace_matter are read by resolve.
     vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.resolve, queue_in, 0);
     vkCmdDispatchIndirect(cmd, r.control.get(), args);
+    stamp(StageKernel::Resolve);
     // The output queue's count, bumped by resolve, is read by prepare.
     vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.prepare, queue_in, it + 1 == r.iterations ? 1u : 0u);
     vkCmdDispatch(cmd, 1, 1, 1);
+    stamp(StageKernel::Prepare);
     // Prepare's group count is the next iteration's indirect argument.
     vk::compute_to_compute(cmd);
   }
@@ -63,6 +75,7 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r) {
     else
       vkCmdDispatch(cmd, 1, 1, 1);
   }
+  stamp(StageKernel::Admit);
 }
 
 }  // namespace sp::gpu

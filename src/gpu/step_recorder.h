@@ -7,11 +7,13 @@
 #include <vulkan/vulkan.h>
 
 #include "gpu/gpu_resources.h"
+#include "gpu/stage_queries.h"
 
 namespace sp::gpu {
 
 // The caller has made the step input visible to compute reads and ordered
 // earlier accesses to the ray, queue and control buffers before this.
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources);
+// With `stages`, timestamps go around its kernels when the step fits.
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources, StageQueries* stages = nullptr);
 
 }  // namespace sp::gpu

@@ -305,6 +305,8 @@ PanelActions UiPanel::build(const PanelStats& stats, PanelState& state, const st
       ImGui::Separator();
       ImGui::Text("frame       %8.2f ms", stats.frame_ms);
       ImGui::Text("simulation  %8.2f ms", stats.simulation_ms);
+      // Its stages, newest frame measured: kernels (GPU) or the worker's step (CPU).
+      for (const auto& [stage, ms] : stats.stages) ImGui::Text("  %-10s%8.2f ms", stage.c_str(), ms);
       ImGui::Text("scene       %8.2f ms", stats.scene_ms);
       ImGui::Text("indicators  %8.2f ms", stats.indicators_ms);
       ImGui::Separator();

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -29,7 +30,10 @@ struct PanelStats {
   double frame_ms = 0;       // wall time of the last frame
   double simulation_ms = 0;  // GPU timestamps around the simulation's commands (GPU backend), or the CPU step time
   double scene_ms = 0;       // GPU time of the scene pass
-  double indicators_ms = 0;  // GPU time of the indicator pass
+  double indicators_ms = 0;
+  // The simulation's stages (sp::Visualizer::stage_timings): GPU time per
+  // kernel on the GPU backend, the worker's step time on the CPU backend.
+  std::vector<std::pair<std::string, double>> stages;  // GPU time of the indicator pass
   std::uint64_t steps = 0, casts = 0, rays_emitted = 0, indicators = 0;  // totals so far
   std::uint32_t live_indicators = 0;  // ring slots filled
   // Whether the counts above are known (after the first frame's fence).

@@ -569,6 +569,14 @@ void Viewer::run() {
     Visualizer& visualizer = *painting_.visualizer;
     stats_.backend = visualizer.backend() == Backend::Gpu ? "gpu" : "cpu";
     stats_.steps = visualizer.steps_run();
+    const StageTimings stages = visualizer.stage_timings();
+    stats_.stages.clear();
+    if (stages.measured && visualizer.backend() == Backend::Gpu) {
+      stats_.stages = {{"emit", stages.emit_ms},       {"trace", stages.trace_ms}, {"resolve", stages.resolve_ms},
+                       {"prepare", stages.prepare_ms}, {"admit", stages.admit_ms}};
+    } else if (stages.measured) {
+      stats_.stages = {{"cpu step", stages.cpu_step_ms}};
+    }
     stats_.paused = paused_;
     stats_.listener_pinned = session_.listener_pinned;
     stats_.eye = camera_.eye;
