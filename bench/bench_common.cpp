@@ -314,7 +314,7 @@ void write_json(const CommandLine& cli, const std::string& path, const Json& jso
   try {
     const std::filesystem::path target(path);
     if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-    sp::write_file_atomically(target, json.dump(2) + "\n");
+    sp::write_file_atomically(target, json.dump(2) + "\n").value();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: cannot write %s: %s\n", cli.program().c_str(), path.c_str(), e.what());
     std::exit(1);

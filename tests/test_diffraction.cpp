@@ -137,7 +137,7 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   const int before = exposed_count(bvh.edges);
   std::vector<glm::vec3> moved = scene.vertices;
   for (std::size_t k = 36; k < moved.size(); ++k) moved[k].y += 0.5f;
-  const BvhChanges changes = refit_bvh(bvh, moved);
+  const BvhChanges changes = refit_bvh(bvh, moved).value();
   EXPECT_FALSE(changes.edges.empty());
   EXPECT_EQ(exposed_count(bvh.edges), before + 2 * 4);
   // Found again near what moved only, the same as from scratch.
@@ -145,7 +145,7 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   ASSERT_EQ(fresh.size(), bvh.edges.size());
   EXPECT_EQ(std::memcmp(fresh.data(), bvh.edges.data(), fresh.size() * sizeof(fresh[0])), 0);
   // And back down: buried again.
-  refit_bvh(bvh, scene.vertices);
+  ASSERT_TRUE(refit_bvh(bvh, scene.vertices).ok());
   EXPECT_EQ(exposed_count(bvh.edges), before);
 }
 

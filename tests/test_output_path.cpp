@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/output_path.h"
+#include "soundpaint/output.h"
 #include "soundpaint/result.h"
 #include "support/test_directory.h"
 
@@ -141,6 +142,33 @@ TEST_F(OutputPath, TwoOutputsMayNotShareAFile) {
   }
   const std::vector<sp::NamedOutput> distinct = {{"--indicators", dir_ / "a.csv"}, {"--stats", "-"}};
   EXPECT_NO_THROW(sp::check_distinct_outputs(distinct));
+}
+
+}  // namespace
+
+namespace {
+
+// The public writers return errors instead of throwing (issue 14).
+TEST(PublicWriters, ReturnIoErrorsNamingThePath) {
+  const auto csv = sp::IndicatorCsvWriter::open("/nonexistent-folder/indicators.csv");
+  ASSERT_FALSE(csv.ok());
+  EXPECT_EQ(csv.error().code, sp::ErrorCode::Io);
+  EXPECT_NE(csv.error().message.find("/nonexistent-folder/indicators.csv"), std::string::npos) << csv.error().message;
+  const auto text = sp::write_file_atomically("/nonexistent-folder/stats.json", "{}");
+  ASSERT_FALSE(text.ok());
+  EXPECT_EQ(text.error().code, sp::ErrorCode::Io);
+
+  const fs::path dir = fs::temp_directory_path() / ("soundpaint-writers-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto writer = sp::IndicatorCsvWriter::open(dir / "ok.csv").value();
+  EXPECT_FALSE(fs::exists(dir / "ok.csv"));  // not before commit
+  ASSERT_TRUE(writer->write({}).ok());
+  ASSERT_TRUE(writer->commit().ok());
+  std::ifstream in(dir / "ok.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, sp::kIndicatorCsvHeader);
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "soundpaint/result.h"
 #include "sp_types.h"
 
 namespace sp {
@@ -57,10 +58,15 @@ struct Bvh {
 // matter rules need (make_world computes it); without it (empty) every
 // triangle is a piece alone, enough for queries that are not simulations.
 // Degenerate (zero-area) triangles are kept (they never report hits).
-// Precondition: at least one triangle, finite coordinates (load_scene checks).
+// Cannot fail (but for std::bad_alloc): no triangles give an empty tree;
+// with fewer layers than triangles only the first layers.size() triangles
+// are built, and an empty `solids` is allowed; coordinates should be finite
+// (load_scene checks), a non-finite one only makes its triangle unhittable.
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
               std::span<const std::uint32_t> solids = {}, const BvhBuildSettings& settings = {});
 
+// The queries below cannot fail: a ray that meets nothing (or an empty
+// tree) reports SP_INVALID.
 // Closest hit with distance in (tmin, tmax] along unit direction `dir`.
 // Triangles are two-sided; ties go to the lowest scene index. Traverses
 // `wide` when there is one, else `nodes`; either way the answer is the
@@ -101,13 +107,13 @@ struct BvhChanges {
 // at most 16 unchanged entries apart are merged into one. A bound equal as a
 // float to the old one (+0 and -0) keeps its old bits, so unchanged vertices
 // report no change whatever order build_bvh scanned them in.
-// Throws sp::Exception(ErrorCode::InvalidArgument), leaving `bvh` untouched,
-// when vertices.size() != 3 * triangle_count(), a vertex is not finite, or
-// the tree is not shaped as build_bvh makes it (children after their parent,
-// ranges inside the arrays, scene indices below triangle_count()).
-BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices);
+// ErrorCode::InvalidArgument, leaving `bvh` untouched, when vertices.size()
+// != 3 * triangle_count(), a vertex is not finite, or the tree is not shaped
+// as build_bvh makes it (children after their parent, ranges inside the
+// arrays, scene indices below triangle_count()).
+Result<BvhChanges> refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices);
 
-// Surface-area-heuristic cost of the tree relative to its root box: sum over
+// Cannot fail. Surface-area-heuristic cost of the tree relative to its root box: sum over
 // inner nodes of area(node) / area(root) * traversal_cost, plus sum over
 // leaves of area(leaf) / area(root) * count. Refitting after large motions
 // raises it; callers rebuild when it has grown too much. Being relative to

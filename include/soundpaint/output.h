@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "soundpaint/result.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -19,19 +20,22 @@ inline constexpr const char* kIndicatorCsvHeader =
     "step,kind,source,x,y,z,nx,ny,nz,energy,bounces,penetrations,path_length,intensity,size,r,g,b,dx,dy,dz,"
     "diffractions";
 
-// Streams indicators into a CSV file. Throws sp::Exception (ErrorCode::Io)
-// on failure; the target file appears only after commit().
+// Streams indicators into a CSV file; the target file appears only after
+// commit(). Errors are ErrorCode::Io naming the path; after one, the writer
+// is unusable and the target untouched (the temporary file is removed).
 class IndicatorCsvWriter {
  public:
-  explicit IndicatorCsvWriter(const std::filesystem::path& path);
+  // Opens a temporary file beside `path` and writes the header.
+  static Result<std::unique_ptr<IndicatorCsvWriter>> open(const std::filesystem::path& path);
   ~IndicatorCsvWriter();
   IndicatorCsvWriter(const IndicatorCsvWriter&) = delete;
   IndicatorCsvWriter& operator=(const IndicatorCsvWriter&) = delete;
 
-  void write(std::span<const Indicator> indicators);
-  void commit();
+  Result<bool> write(std::span<const Indicator> indicators);
+  Result<bool> commit();
 
  private:
+  IndicatorCsvWriter();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
@@ -42,14 +46,19 @@ struct StepTimings {
   std::vector<double> gpu_ms;   // one per step; empty for the CPU backend
 };
 
+// Cannot fail: 0 for an empty list.
 double median(std::vector<double> values);
-double percentile(std::vector<double> values, double p);  // p in [0, 100], nearest rank
+double percentile(std::vector<double> values, double p);  // p in [0, 100] (clamped), nearest rank
 
 // The stats JSON object (contract: README.md, "Command line") as text.
+// Cannot fail (but for std::bad_alloc): every count is a number; layers
+// without counters are left out.
+
 std::string stats_json(const World& world, const SimulationStats& stats, const char* backend_name,
                        const std::string& device, const StepTimings& timings);
 
 // Writes `text` to `path` atomically (temporary file + rename).
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+// ErrorCode::Io naming the path when it cannot.
+Result<bool> write_file_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace sp

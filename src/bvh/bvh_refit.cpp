@@ -162,9 +162,7 @@ double node_half_area(const BvhNode& n) {
   return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-}  // namespace
-
-BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices) {
+BvhChanges refit(Bvh& bvh, std::span<const glm::vec3> vertices) {
   check_vertices(bvh, vertices);
   check_shape(bvh);
 
@@ -198,6 +196,12 @@ BvhChanges refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices) {
   if (!bvh.edges.empty()) bvh.edges.swap(next.edges);
   bvh.wide = std::move(next.wide);
   return changes;
+}
+
+}  // namespace
+
+Result<BvhChanges> refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices) {
+  return capture_errors([&] { return refit(bvh, vertices); });
 }
 
 double bvh_sah_cost(const Bvh& bvh, float traversal_cost) {

@@ -74,8 +74,8 @@ int run_simulate(const std::vector<std::string>& args) {
 
   // Open outputs before the run so an unwritable path fails fast; both only
   // appear under their names once complete.
-  std::optional<IndicatorCsvWriter> csv;
-  if (indicators_path) csv.emplace(*indicators_path);
+  std::unique_ptr<IndicatorCsvWriter> csv;
+  if (indicators_path) csv = IndicatorCsvWriter::open(*indicators_path).value();
   std::optional<AtomicFile> stats_file;
   if (stats_path) stats_file.emplace(*stats_path);
 
@@ -86,13 +86,13 @@ int run_simulate(const std::vector<std::string>& args) {
     auto end = std::chrono::steady_clock::now();
     timings.wall_ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
     if (auto gpu_ms = simulator->last_gpu_ms()) timings.gpu_ms.push_back(*gpu_ms);
-    if (csv) csv->write(simulator->last_step_indicators().value());
+    if (csv) csv->write(simulator->last_step_indicators().value()).value();
   }
 
   SimulationStats stats = simulator->stats().value();
   if (stats_file) stats_file->write(stats_json(simulator->world(), stats, backend_name(simulator->backend()),
                                               simulator->device_description(), timings));
-  if (csv) csv->commit();
+  if (csv) csv->commit().value();
   if (stats_file) stats_file->commit();
   std::fprintf(report, "%llu steps on %s: %llu rays, %llu casts, %llu indicators, %.3f ms/step median\n",
                static_cast<unsigned long long>(stats.steps), backend_name(simulator->backend()),

@@ -37,7 +37,7 @@ std::string encode_png(const RgbaImage& image) {
 }
 
 void write_png(const std::filesystem::path& path, const RgbaImage& image) {
-  write_file_atomically(path, encode_png(image));
+  write_file_atomically(path, encode_png(image)).value();
 }
 
 }  // namespace sp::draw

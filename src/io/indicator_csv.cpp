@@ -31,13 +31,21 @@ struct IndicatorCsvWriter::Impl {
   std::string buffer;
 };
 
-IndicatorCsvWriter::IndicatorCsvWriter(const std::filesystem::path& path) : impl_(std::make_unique<Impl>(path)) {
-  impl_->file.write(std::string(kIndicatorCsvHeader) + "\n");
+IndicatorCsvWriter::IndicatorCsvWriter() = default;
+
+Result<std::unique_ptr<IndicatorCsvWriter>> IndicatorCsvWriter::open(const std::filesystem::path& path) {
+  return capture_errors([&] {
+    std::unique_ptr<IndicatorCsvWriter> writer(new IndicatorCsvWriter());
+    writer->impl_ = std::make_unique<Impl>(path);
+    writer->impl_->file.write(std::string(kIndicatorCsvHeader) + "\n");
+    return writer;
+  }, ErrorCode::Io);
 }
 
 IndicatorCsvWriter::~IndicatorCsvWriter() = default;
 
-void IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
+Result<bool> IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
+  return capture_errors([&] {
   std::string& out = impl_->buffer;
   out.clear();
   for (const Indicator& ind : indicators) {
@@ -66,14 +74,24 @@ void IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
     out.back() = '\n';
   }
   impl_->file.write(out);
+  return true;
+  }, ErrorCode::Io);
 }
 
-void IndicatorCsvWriter::commit() { impl_->file.commit(); }
+Result<bool> IndicatorCsvWriter::commit() {
+  return capture_errors([&] {
+    impl_->file.commit();
+    return true;
+  }, ErrorCode::Io);
+}
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  AtomicFile file(path);
-  file.write(text);
-  file.commit();
+Result<bool> write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  return capture_errors([&] {
+    AtomicFile file(path);
+    file.write(text);
+    file.commit();
+    return true;
+  }, ErrorCode::Io);
 }
 
 }  // namespace sp

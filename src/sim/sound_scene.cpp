@@ -193,7 +193,7 @@ BvhChanges SoundScene::update_geometry() {
                         : glm::vec3(world_.instance_transforms[instance] * glm::vec4(world_.rest_vertices[k], 1.0f));
     }
   }
-  BvhChanges changes = refit_bvh(world_.bvh, vertices);
+  BvhChanges changes = refit_bvh(world_.bvh, vertices).value();
   if (absolute_sah_cost(world_.bvh) > kRebuildCostRatio * world_.build_sah_cost) {
     const bool had_edges = !world_.bvh.edges.empty();
     world_.bvh = build_bvh(vertices, world_.triangle_layers, world_.triangle_solids);
