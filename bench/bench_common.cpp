@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "generated_level.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 
 namespace spbench {
 

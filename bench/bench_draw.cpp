@@ -22,7 +22,7 @@
 #include "draw/host_indicators.h"
 #include "draw/renderer.h"
 #include "draw/view_camera.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 #include "soundpaint/simulation.h"
 #include "vk/context.h"
 

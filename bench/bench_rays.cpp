@@ -32,7 +32,7 @@
 #include "embree_cast.h"
 #include "sim/step_plan.h"
 #include "sim/thread_pool.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 #include "sp_ray_model.h"
 
 namespace {

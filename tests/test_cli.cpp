@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "soundpaint/output.h"
+#include "io/output.h"
 #include "support/run_command.h"
 #include "support/vulkan_environment.h"
 

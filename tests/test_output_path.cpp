@@ -14,7 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/output_path.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 #include "soundpaint/result.h"
 #include "support/test_directory.h"
 

@@ -9,7 +9,7 @@
 #include "cli/world_loading.h"
 #include "io/atomic_file.h"
 #include "io/output_path.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 
 namespace sp::cli {
 namespace {

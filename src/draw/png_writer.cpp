@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "soundpaint/output.h"
+#include "io/output.h"
 #include "soundpaint/result.h"
 
 namespace sp::draw {

@@ -2,7 +2,7 @@
 #include <string>
 
 #include "io/atomic_file.h"
-#include "soundpaint/output.h"
+#include "io/output.h"
 
 namespace sp {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "soundpaint/output.h"
+#include "io/output.h"
 
 namespace sp {
 

@@ -1,7 +1,8 @@
-// Writers for the command line's outputs (contract: README.md, "Command line"):
-// the indicator CSV and the stats JSON. Files are written to a temporary name
-// beside the target and renamed on commit, so a failure never leaves a
-// half-written file.
+// Writers for the command line's outputs (contract: README.md, "Command
+// line"): the indicator CSV and the stats JSON. Files are written to a
+// temporary name beside the target and renamed on commit, so a failure
+// never leaves a half-written file. Not installed: CLI and bench helpers,
+// not the library's API.
 #pragma once
 
 #include <filesystem>
