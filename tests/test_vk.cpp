@@ -28,7 +28,9 @@
 #include "vk/context.h"
 #include "vk/debug_messenger.h"
 #include "vk/device_selection.h"
+#include "soundpaint/visualizer.h"
 #include "vk/handle.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace {
@@ -478,6 +480,94 @@ TEST_F(VkTest, DeviceObjectMoveAssignDestroysTheOldHandle) {
   third.reset();  // a second reset is a no-op
   EXPECT_FALSE(third);
   EXPECT_EQ(allocator.live(), none);
+}
+
+// Every object helper of vk/objects.h, and the buffers and pipelines built on
+// them, on a borrowed device: each is created through the host's allocator
+// and freed through it (the validation layer reports a destroy whose
+// allocator differs from the create's).
+TEST_F(VkTest, BorrowedObjectsAreCreatedAndFreedThroughTheHostsAllocator) {
+  CountingAllocator allocator;  // outlives the borrowed context and its objects
+  const VkAllocationCallbacks callbacks = allocator.callbacks();
+  sp::HostVulkan host;
+  host.instance = context().instance();
+  host.physical_device = context().physical_device();
+  host.device = context().device();
+  host.queue_family = context().queue_family();
+  host.allocator = &callbacks;
+  const std::unique_ptr<Context> borrowed = Context::borrow(host).value();
+  ASSERT_EQ(borrowed->allocator(), &callbacks);
+  const Context& c = *borrowed;
+
+  const std::size_t none = allocator.live();
+  // Creates one object, checks that it lives in the host's allocations, and
+  // that they are gone again once the object is. Layouts are the exception
+  // on Mesa: refcounted, they may outlive their handle and so are always
+  // allocated from the device's allocator, whatever pAllocator says.
+  const auto served = [&](const char* what, auto make, bool driver_uses_callbacks = true) {
+    {
+      const auto object = make();
+      if (driver_uses_callbacks) {
+        EXPECT_GT(allocator.live(), none) << what << " was not created through the host's allocator";
+      }
+    }
+    EXPECT_EQ(allocator.live(), none) << what << " was not freed through the host's allocator";
+  };
+  {
+    const auto probe = sp::vk::create_fence(c, "probe");
+    if (allocator.live() == none) GTEST_SKIP() << "the driver does not allocate objects through VkAllocationCallbacks";
+  }
+  served("a shader module", [&] { return sp::vk::create_shader_module(c, sp_spirv_test_fill_comp, "fill"); });
+  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+                                             nullptr};
+  served("a descriptor set layout", [&] { return sp::vk::create_descriptor_set_layout(c, {&binding, 1}, "layout"); },
+         false);
+  served("a descriptor pool",
+         [&] { return sp::vk::create_descriptor_pool(c, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, 1, "pool"); });
+  served("a pipeline layout",
+         [&] { return sp::vk::create_pipeline_layout(c, {}, VK_SHADER_STAGE_COMPUTE_BIT, 16, "pipeline layout"); },
+         false);
+  served("a command pool", [&] { return sp::vk::create_command_pool(c, c.queue_family(), 0, "commands"); });
+  served("a fence", [&] { return sp::vk::create_fence(c, "fence"); });
+  served("a timestamp pool", [&] { return sp::vk::create_timestamp_pool(c, 4, "timestamps"); });
+  served("a buffer", [&] { return Buffer(c, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::DeviceLocal, "buffer"); });
+  served("storage bindings and a compute pipeline", [&] { return std::make_unique<FillKernel>(c); });
+}
+
+// What the kernels need of subgroups, checked from the device's properties.
+TEST(SubgroupSupport, NamesEachMissingStageAndOperation) {
+  VkPhysicalDeviceSubgroupProperties subgroup{};
+  subgroup.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+  subgroup.subgroupSize = 32;
+  subgroup.supportedStages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  subgroup.supportedOperations = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT |
+                                 VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  EXPECT_EQ(sp::vk::missing_subgroup_support(subgroup), "");
+
+  VkPhysicalDeviceSubgroupProperties fragment_only = subgroup;
+  fragment_only.supportedStages = VK_SHADER_STAGE_FRAGMENT_BIT;
+  EXPECT_EQ(sp::vk::missing_subgroup_support(fragment_only), " compute-stage subgroups");
+
+  VkPhysicalDeviceSubgroupProperties basic_only = subgroup;
+  basic_only.supportedOperations = VK_SUBGROUP_FEATURE_BASIC_BIT;
+  EXPECT_EQ(sp::vk::missing_subgroup_support(basic_only),
+            " ballot subgroup operations arithmetic subgroup operations");
+
+  const VkPhysicalDeviceSubgroupProperties none{};
+  const std::string missing = sp::vk::missing_subgroup_support(none);
+  for (const char* part : {"compute-stage", "basic", "ballot", "arithmetic"})
+    EXPECT_NE(missing.find(part), std::string::npos) << missing;
+}
+
+// The device the tests run on has them, borrowed or owned.
+TEST_F(VkTest, TheTestDeviceHasTheSubgroupOperationsTheKernelsUse) {
+  sp::HostVulkan host;
+  host.instance = context().instance();
+  host.physical_device = context().physical_device();
+  host.device = context().device();
+  host.queue_family = context().queue_family();
+  EXPECT_TRUE(Context::borrow(host).ok());
+  EXPECT_GE(context().subgroup_size(), 1u);
 }
 
 // A buffer assigned over another must free the first buffer and its memory;

@@ -1,9 +1,11 @@
 // The C API's visualizer (include/soundpaint/soundpaint_vulkan.h) over
-// sp::Visualizer: the C structs mirrored into the C++ ones, the handle made
+// sp::Visualizer: the C structs turned into the C++ ones, the handle made
 // and checked like a simulation's.
 #include "soundpaint/soundpaint_vulkan.h"
 
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <span>
 #include <string>
@@ -27,28 +29,26 @@ using sp::capi::require;
 using sp::capi::require_live;
 using sp::capi::unwrap;
 
-sp::HostVulkan to_cpp(const sp_host_vulkan& in) {
-  sp::HostVulkan out;
-  out.instance = in.instance;
-  out.physical_device = in.physical_device;
-  out.device = in.device;
-  out.queue_family = in.queue_family;
-  out.compute_queue_family = in.compute_queue_family;
-  out.pipeline_cache = in.pipeline_cache;
-  out.allocator = in.allocator;
-  out.enabled_features = in.enabled_features;
-  return out;
-}
+// sp_host_vulkan and sp_draw_target are sp::HostVulkan and sp::DrawTarget
+// field for field, so the host's handles and formats cross the C boundary
+// as one bit copy each rather than a field-by-field mirror.
+#define SP_SAME(c, cpp, field) (offsetof(c, field) == offsetof(cpp, field))
+#define SP_HOST(field) SP_SAME(sp_host_vulkan, sp::HostVulkan, field)
+static_assert(sizeof(sp_host_vulkan) == sizeof(sp::HostVulkan) && SP_HOST(instance) && SP_HOST(physical_device) &&
+                  SP_HOST(device) && SP_HOST(queue_family) && SP_HOST(compute_queue_family) &&
+                  SP_HOST(pipeline_cache) && SP_HOST(allocator) && SP_HOST(enabled_features),
+              "sp_host_vulkan (soundpaint_vulkan.h) and sp::HostVulkan (visualizer.h) must keep one layout");
+#define SP_TARGET(field) SP_SAME(sp_draw_target, sp::DrawTarget, field)
+static_assert(sizeof(sp_draw_target) == sizeof(sp::DrawTarget) && SP_TARGET(color_format) &&
+                  SP_TARGET(depth_format) && SP_TARGET(stencil_format) && SP_TARGET(samples) &&
+                  SP_TARGET(depth_compare),
+              "sp_draw_target (soundpaint_vulkan.h) and sp::DrawTarget (visualizer.h) must keep one layout");
+#undef SP_TARGET
+#undef SP_HOST
+#undef SP_SAME
 
-sp::DrawTarget to_cpp(const sp_draw_target& in) {
-  sp::DrawTarget out;
-  out.color_format = in.color_format;
-  out.depth_format = in.depth_format;
-  out.stencil_format = in.stencil_format;
-  out.samples = in.samples;
-  out.depth_compare = in.depth_compare;
-  return out;
-}
+sp::HostVulkan to_cpp(const sp_host_vulkan& in) { return std::bit_cast<sp::HostVulkan>(in); }
+sp::DrawTarget to_cpp(const sp_draw_target& in) { return std::bit_cast<sp::DrawTarget>(in); }
 
 // A column-major matrix from C, NULL and non-finite values rejected here so
 // that the message names the parameter.
@@ -71,29 +71,12 @@ extern "C" {
 
 void sp_host_vulkan_init(sp_host_vulkan* host) noexcept {
   if (host == nullptr) return;
-  const sp::HostVulkan defaults;
-  sp_host_vulkan out{};
-  out.instance = defaults.instance;
-  out.physical_device = defaults.physical_device;
-  out.device = defaults.device;
-  out.queue_family = defaults.queue_family;
-  out.compute_queue_family = defaults.compute_queue_family;
-  out.pipeline_cache = defaults.pipeline_cache;
-  out.allocator = defaults.allocator;
-  out.enabled_features = defaults.enabled_features;
-  *host = out;
+  *host = std::bit_cast<sp_host_vulkan>(sp::HostVulkan{});
 }
 
 void sp_draw_target_init(sp_draw_target* target) noexcept {
   if (target == nullptr) return;
-  const sp::DrawTarget defaults;
-  sp_draw_target out{};
-  out.color_format = defaults.color_format;
-  out.depth_format = defaults.depth_format;
-  out.stencil_format = defaults.stencil_format;
-  out.samples = defaults.samples;
-  out.depth_compare = defaults.depth_compare;
-  *target = out;
+  *target = std::bit_cast<sp_draw_target>(sp::DrawTarget{});
 }
 
 sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,

@@ -3,47 +3,25 @@
 #include <string>
 
 #include "soundpaint/result.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
-namespace {
-
-vk::UniqueShaderModule make_module(const vk::Context& context, std::span<const std::uint32_t> spirv,
-                                   const std::string& name) {
-  if (spirv.empty()) throw Exception(ErrorCode::InvalidArgument, name + ": no SPIR-V code");
-  VkShaderModuleCreateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-  info.codeSize = spirv.size_bytes();
-  info.pCode = spirv.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateShaderModule(context.device(), &info, context.allocator(), &module));
-  context.set_name(VK_OBJECT_TYPE_SHADER_MODULE, module, name.c_str());
-  return vk::UniqueShaderModule(context.device(), module, context.allocator());
-}
-
-}  // namespace
 
 GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPipelineDesc& desc) {
   const std::string label = desc.name != nullptr ? desc.name : "graphics pipeline";
   const VkDevice device = context.device();
 
-  const VkPushConstantRange push_range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                       desc.push_constant_bytes};
-  VkPipelineLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
   const VkDescriptorSetLayout set_layouts[2] = {desc.set_layout, desc.set_layout_1};
-  layout_info.setLayoutCount = desc.set_layout_1 != VK_NULL_HANDLE ? 2 : 1;
-  layout_info.pSetLayouts = set_layouts;
-  layout_info.pushConstantRangeCount = desc.push_constant_bytes > 0 ? 1 : 0;
-  layout_info.pPushConstantRanges = &push_range;
-  VkPipelineLayout raw_layout = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreatePipelineLayout(device, &layout_info, context.allocator(), &raw_layout));
-  layout_ = vk::UniquePipelineLayout(device, raw_layout, context.allocator());
-  context.set_name(VK_OBJECT_TYPE_PIPELINE_LAYOUT, raw_layout, (label + " layout").c_str());
+  layout_ = vk::create_pipeline_layout(context, {set_layouts, desc.set_layout_1 != VK_NULL_HANDLE ? 2u : 1u},
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                       desc.push_constant_bytes, (label + " layout").c_str());
 
   // Only needed until the pipeline exists.
-  const vk::UniqueShaderModule vertex = make_module(context, desc.vertex_spirv, label + " vertex");
-  const vk::UniqueShaderModule fragment = make_module(context, desc.fragment_spirv, label + " fragment");
+  const vk::UniqueShaderModule vertex =
+      vk::create_shader_module(context, desc.vertex_spirv, (label + " vertex").c_str());
+  const vk::UniqueShaderModule fragment =
+      vk::create_shader_module(context, desc.fragment_spirv, (label + " fragment").c_str());
   VkPipelineShaderStageCreateInfo stages[2]{};
   for (VkPipelineShaderStageCreateInfo& stage : stages) {
     stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -126,7 +104,7 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   info.pDepthStencilState = &depth;
   info.pColorBlendState = &blend;
   info.pDynamicState = &dynamic;
-  info.layout = raw_layout;
+  info.layout = layout_.get();
   VkPipeline raw_pipeline = VK_NULL_HANDLE;
   SP_VK_CHECK(vkCreateGraphicsPipelines(device, context.pipeline_cache(), 1, &info, context.allocator(), &raw_pipeline));
   pipeline_ = vk::UniquePipeline(device, raw_pipeline, context.allocator());

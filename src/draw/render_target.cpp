@@ -8,6 +8,7 @@
 #include "soundpaint/result.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
@@ -26,10 +27,8 @@ DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::u
   info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkImage raw_image = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateImage(device, &info, nullptr, &raw_image));
-  image_ = vk::UniqueImage(device, raw_image);
-  context.set_name(VK_OBJECT_TYPE_IMAGE, raw_image, name);
+  image_ = vk::create_object<vk::UniqueImage>(context, vkCreateImage, info, VK_OBJECT_TYPE_IMAGE, name);
+  const VkImage raw_image = image_.get();
 
   VkMemoryRequirements requirements{};
   vkGetImageMemoryRequirements(device, raw_image, &requirements);
@@ -45,10 +44,8 @@ DeviceImage::DeviceImage(const vk::Context& context, std::uint32_t width, std::u
   view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
   view_info.format = format;
   view_info.subresourceRange = {aspect, 0, 1, 0, 1};
-  VkImageView raw_view = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &raw_view));
-  view_ = vk::UniqueImageView(device, raw_view);
-  context.set_name(VK_OBJECT_TYPE_IMAGE_VIEW, raw_view, (std::string(name) + " view").c_str());
+  view_ = vk::create_object<vk::UniqueImageView>(context, vkCreateImageView, view_info, VK_OBJECT_TYPE_IMAGE_VIEW,
+                                                 (std::string(name) + " view").c_str());
 }
 
 RenderTarget::RenderTarget(const vk::Context& context, std::uint32_t width, std::uint32_t height)

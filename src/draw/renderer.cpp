@@ -5,6 +5,7 @@
 #include "draw/display_sources.h"
 
 #include "vk/barriers.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
@@ -20,17 +21,8 @@ Renderer::Renderer(vk::Context& context, const World& world, const RenderSetting
   scene_depth_ = indicators_.scene_depths().add(target_.depth_view());
   // Timestamps are optional; this limit promises them on every graphics and
   // compute queue, so the context's queue family need not be asked.
-  if (context_.properties().limits.timestampComputeAndGraphics) {
-    const VkDevice device = context_.device();
-    VkQueryPoolCreateInfo query_info{};
-    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    query_info.queryCount = kQueries;
-    VkQueryPool query_pool = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
-    timestamps_ = vk::UniqueQueryPool(device, query_pool);
-    context_.set_name(VK_OBJECT_TYPE_QUERY_POOL, query_pool, "render timestamps");
-  }
+  if (context_.properties().limits.timestampComputeAndGraphics)
+    timestamps_ = vk::create_timestamp_pool(context_, kQueries, "render timestamps");
 }
 
 RgbaImage Renderer::render(const ViewCamera& camera, Simulator& simulator) {

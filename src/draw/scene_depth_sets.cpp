@@ -3,13 +3,13 @@
 #include <string>
 
 #include "soundpaint/result.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::draw {
 
 SceneDepthSets::SceneDepthSets(const vk::Context& context, std::uint32_t capacity)
     : context_(&context), capacity_(capacity) {
-  const VkDevice device = context.device();
   // Depth is read texel by texel (texelFetch): no filtering, no mips.
   VkSamplerCreateInfo sampler_info{};
   sampler_info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
@@ -19,35 +19,17 @@ SceneDepthSets::SceneDepthSets(const vk::Context& context, std::uint32_t capacit
   sampler_info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sampler_info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sampler_info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkSampler raw_sampler = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateSampler(device, &sampler_info, context.allocator(), &raw_sampler));
-  sampler_ = vk::UniqueSampler(device, raw_sampler, context.allocator());
-  context.set_name(VK_OBJECT_TYPE_SAMPLER, raw_sampler, "scene depth sampler");
+  sampler_ = vk::create_object<vk::UniqueSampler>(context, vkCreateSampler, sampler_info, VK_OBJECT_TYPE_SAMPLER,
+                                                 "scene depth sampler");
 
   VkDescriptorSetLayoutBinding binding{};
   binding.binding = 0;
   binding.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   binding.descriptorCount = 1;
   binding.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
-  VkDescriptorSetLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  layout_info.bindingCount = 1;
-  layout_info.pBindings = &binding;
-  VkDescriptorSetLayout raw_layout = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateDescriptorSetLayout(device, &layout_info, context.allocator(), &raw_layout));
-  layout_ = vk::UniqueDescriptorSetLayout(device, raw_layout, context.allocator());
-  context.set_name(VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, raw_layout, "scene depth layout");
-
-  const VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, capacity};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = capacity;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  VkDescriptorPool raw_pool = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, context.allocator(), &raw_pool));
-  pool_ = vk::UniqueDescriptorPool(device, raw_pool, context.allocator());
-  context.set_name(VK_OBJECT_TYPE_DESCRIPTOR_POOL, raw_pool, "scene depth pool");
+  layout_ = vk::create_descriptor_set_layout(context, {&binding, 1}, "scene depth layout");
+  pool_ = vk::create_descriptor_pool(context, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, capacity, capacity,
+                                     "scene depth pool");
 }
 
 VkDescriptorSet SceneDepthSets::add(VkImageView view) {
@@ -55,23 +37,9 @@ VkDescriptorSet SceneDepthSets::add(VkImageView view) {
   if (sets_.size() >= capacity_)
     throw Exception(ErrorCode::LimitExceeded,
                     "scene depth: at most " + std::to_string(capacity_) + " depth views can be registered at once");
-  const VkDescriptorSetLayout layout = layout_.get();
-  VkDescriptorSetAllocateInfo set_info{};
-  set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  set_info.descriptorPool = pool_.get();
-  set_info.descriptorSetCount = 1;
-  set_info.pSetLayouts = &layout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkAllocateDescriptorSets(context_->device(), &set_info, &set));
-  const VkDescriptorImageInfo image{sampler_.get(), view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet write{};
-  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  write.dstSet = set;
-  write.dstBinding = 0;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  write.pImageInfo = &image;
-  vkUpdateDescriptorSets(context_->device(), 1, &write, 0, nullptr);
+  const VkDescriptorSet set = vk::allocate_descriptor_set(*context_, pool_.get(), layout_.get(), "scene depth");
+  vk::write_descriptor(*context_, set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                       VkDescriptorImageInfo{sampler_.get(), view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL});
   sets_.push_back(set);
   return set;
 }

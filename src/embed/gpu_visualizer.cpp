@@ -10,6 +10,7 @@
 #include "sp_gpu_types.h"
 #include "vk/barriers.h"
 #include "vk/handle.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::embed {
@@ -30,13 +31,7 @@ class GpuVisualizer final : public VisualizerBase {
     // and compute queue.
     if (!context_->properties().limits.timestampComputeAndGraphics) return;
     queries_per_frame_ = settings.max_steps_per_frame * gpu::stage_queries_per_step(engine_.iterations());
-    VkQueryPoolCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-    info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    info.queryCount = queries_per_frame_ * kTimedFrames;
-    VkQueryPool pool = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateQueryPool(context_->device(), &info, context_->allocator(), &pool));
-    stage_pool_ = vk::UniqueQueryPool(context_->device(), pool, context_->allocator());
+    stage_pool_ = vk::create_timestamp_pool(*context_, queries_per_frame_ * kTimedFrames, "stage timestamps");
     tick_ms_ = double(context_->properties().limits.timestampPeriod) * 1e-6;
   }
 

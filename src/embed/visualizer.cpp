@@ -61,31 +61,19 @@ Result<bool> check_target(VkPhysicalDevice device, const DrawTarget& target) {
 
 Result<std::unique_ptr<Visualizer>> Visualizer::create(const HostVulkan& host, const DrawTarget& target, World world,
                                                        const VisualizerSettings& settings) {
-  if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE)
-    return invalid("Visualizer: the host's VkInstance, VkPhysicalDevice and VkDevice must all be set");
-  if (host.queue_family == VK_QUEUE_FAMILY_IGNORED) return invalid("Visualizer: HostVulkan::queue_family must be set");
   if (settings.max_steps_per_frame == 0) return invalid("Visualizer: max_steps_per_frame must be >= 1");
   if (world.bvh.nodes.empty()) return invalid("Visualizer: the world has no BVH (make it with make_world)");
+  // The host's handles, checked (null, queue families, features) and used as
+  // they are: no copy of them is made.
+  Result<std::unique_ptr<vk::Context>> context = vk::Context::borrow(host);
+  if (!context) return context.error();
   if (auto valid = check_target(host.physical_device, target); !valid) return valid.error();
   if (!family_has(host.physical_device, host.queue_family, VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
     return invalid("Visualizer: queue family " + std::to_string(host.queue_family) +
                    " must support graphics and compute (it runs the indicator draw)");
-
-  vk::BorrowedDevice borrowed;
-  borrowed.instance = host.instance;
-  borrowed.physical_device = host.physical_device;
-  borrowed.device = host.device;
-  borrowed.queue_families = {host.queue_family};
-  const bool async_compute =
-      host.compute_queue_family != VK_QUEUE_FAMILY_IGNORED && host.compute_queue_family != host.queue_family;
-  if (async_compute) borrowed.queue_families.push_back(host.compute_queue_family);
-  borrowed.pipeline_cache = host.pipeline_cache;
-  borrowed.allocator = host.allocator;
-  borrowed.enabled_features = host.enabled_features;
-  Result<std::unique_ptr<vk::Context>> context = vk::Context::borrow(borrowed);
-  if (!context) return context.error();
-  const bool simulation_on_graphics_queue =
-      !async_compute || family_has(host.physical_device, host.compute_queue_family, VK_QUEUE_GRAPHICS_BIT);
+  const bool simulation_on_graphics_queue = (*context)->sharing_families().size() == 1 ||
+                                            family_has(host.physical_device, host.compute_queue_family,
+                                                       VK_QUEUE_GRAPHICS_BIT);
 
   const bool cpu_device = (*context)->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   const bool use_gpu =

@@ -16,6 +16,7 @@
 #include "sim/step_plan.h"
 #include "sp_ring.h"
 #include "vk/handle.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::gpu {
@@ -41,37 +42,11 @@ class GpuSimulator final : public Simulator {
         scene_(std::move(world)),
         engine_(context_, scene_),
         resources_(engine_.resources()) {
-    VkDevice device = context_.device();
-    VkCommandPoolCreateInfo pool_info{};
-    pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    pool_info.queueFamilyIndex = context_.queue_family();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
-    command_pool_ = vk::UniqueCommandPool(device, pool);
-    VkCommandBufferAllocateInfo alloc{};
-    alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    SP_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &command_buffer_));
-    context_.set_name(VK_OBJECT_TYPE_COMMAND_BUFFER, command_buffer_, "soundpaint step");
-
-    VkFenceCreateInfo fence_info{};
-    fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    VkFence fence = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateFence(device, &fence_info, nullptr, &fence));
-    fence_ = vk::UniqueFence(device, fence);
-
-    if (timestamps_supported()) {
-      VkQueryPoolCreateInfo query_info{};
-      query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-      query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      query_info.queryCount = 2;
-      VkQueryPool query_pool = VK_NULL_HANDLE;
-      SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
-      timestamps_ = vk::UniqueQueryPool(device, query_pool);
-    }
+    command_pool_ = vk::create_command_pool(context_, context_.queue_family(),
+                                            VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT, "soundpaint step pool");
+    command_buffer_ = vk::allocate_command_buffer(context_, command_pool_.get(), "soundpaint step");
+    fence_ = vk::create_fence(context_, "soundpaint step fence");
+    if (timestamps_supported()) timestamps_ = vk::create_timestamp_pool(context_, 2, "soundpaint step timestamps");
   }
 
   ~GpuSimulator() override { vkDeviceWaitIdle(context_.device()); }

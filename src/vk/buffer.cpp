@@ -8,6 +8,7 @@
 
 #include "soundpaint/result.h"
 #include "vk/barriers.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::vk {
@@ -71,10 +72,8 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usa
   } else {
     buffer_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   }
-  VkBuffer raw_buffer = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateBuffer(device, &buffer_info, context.allocator(), &raw_buffer));
-  buffer_ = UniqueBuffer(device, raw_buffer, context.allocator());
-  context.set_name(VK_OBJECT_TYPE_BUFFER, raw_buffer, label.c_str());
+  buffer_ = create_object<UniqueBuffer>(context, vkCreateBuffer, buffer_info, VK_OBJECT_TYPE_BUFFER, label.c_str());
+  const VkBuffer raw_buffer = buffer_.get();
 
   VkMemoryRequirements requirements{};
   vkGetBufferMemoryRequirements(device, raw_buffer, &requirements);

@@ -6,9 +6,11 @@
 #include <cstring>
 #include <string_view>
 
+#include "soundpaint/visualizer.h"
 #include "vk/debug_messenger.h"
 #include "vk/device_selection.h"
 #include "vk/handle.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::vk {
@@ -178,6 +180,20 @@ void require_features(VkPhysicalDevice device, const char* device_name, bool hos
 
 }  // namespace
 
+std::string missing_subgroup_support(const VkPhysicalDeviceSubgroupProperties& subgroup) {
+  std::string missing;
+  if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0) missing += " compute-stage subgroups";
+  const struct {
+    VkSubgroupFeatureFlagBits bit;
+    const char* name;
+  } operations[] = {{VK_SUBGROUP_FEATURE_BASIC_BIT, " basic"},
+                    {VK_SUBGROUP_FEATURE_BALLOT_BIT, " ballot"},
+                    {VK_SUBGROUP_FEATURE_ARITHMETIC_BIT, " arithmetic"}};
+  for (const auto& operation : operations)
+    if ((subgroup.supportedOperations & operation.bit) == 0) missing += std::string(operation.name) + " subgroup operations";
+  return missing;
+}
+
 Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings) {
   return capture_errors(
       [&]() -> std::unique_ptr<Context> {
@@ -254,12 +270,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         context->set_name(VK_OBJECT_TYPE_DEVICE, context->device_, "soundpaint device");
         context->set_name(VK_OBJECT_TYPE_QUEUE, context->queue_, "soundpaint queue");
 
-        VkCommandPoolCreateInfo pool_info{};
-        pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        pool_info.queueFamilyIndex = choice.queue_family;
-        SP_VK_CHECK(vkCreateCommandPool(context->device_, &pool_info, nullptr, &context->one_time_pool_));
-        context->set_name(VK_OBJECT_TYPE_COMMAND_POOL, context->one_time_pool_, "soundpaint one-time commands");
+        context->one_time_pool_ = create_command_pool(*context, choice.queue_family,
+                                                      VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                                      "soundpaint one-time commands");
         return context;
       },
       ErrorCode::Vulkan);
@@ -279,15 +292,19 @@ void Context::query_device_properties() {
   subgroup_size_ = subgroup.subgroupSize;
   driver_info_ = std::string(driver.driverName) + " " + driver.driverInfo;
   vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
+  if (const std::string missing = missing_subgroup_support(subgroup); !missing.empty())
+    throw Exception(ErrorCode::Vulkan, std::string(properties_.deviceName) +
+                                           " lacks what soundpaint's compute kernels need of subgroups:" + missing);
 }
 
-Result<std::unique_ptr<Context>> Context::borrow(const BorrowedDevice& host) {
+Result<std::unique_ptr<Context>> Context::borrow(const HostVulkan& host) {
   return capture_errors(
       [&]() -> std::unique_ptr<Context> {
         if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE)
-          throw Exception(ErrorCode::InvalidArgument, "the host's VkInstance, VkPhysicalDevice and VkDevice must be set");
-        if (host.queue_families.empty())
-          throw Exception(ErrorCode::InvalidArgument, "the host's queue family index must be set");
+          throw Exception(ErrorCode::InvalidArgument,
+                          "the host's VkInstance, VkPhysicalDevice and VkDevice must all be set");
+        if (host.queue_family == VK_QUEUE_FAMILY_IGNORED)
+          throw Exception(ErrorCode::InvalidArgument, "HostVulkan::queue_family must be set");
         std::unique_ptr<Context> context(new Context());
         context->borrowed_ = true;
         context->instance_ = host.instance;
@@ -314,7 +331,8 @@ Result<std::unique_ptr<Context>> Context::borrow(const BorrowedDevice& host) {
         vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &family_count, nullptr);
         std::vector<VkQueueFamilyProperties> families(family_count);
         vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &family_count, families.data());
-        for (std::uint32_t family : host.queue_families) {
+        for (std::uint32_t family : {host.queue_family, host.compute_queue_family}) {
+          if (family == VK_QUEUE_FAMILY_IGNORED) continue;  // no async compute queue
           if (family >= family_count)
             throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) + " does not exist on " +
                                                             name + " (it has " + std::to_string(family_count) + ")");
@@ -325,7 +343,7 @@ Result<std::unique_ptr<Context>> Context::borrow(const BorrowedDevice& host) {
               context->sharing_families_.end())
             context->sharing_families_.push_back(family);
         }
-        context->queue_family_ = host.queue_families.front();
+        context->queue_family_ = host.queue_family;
         return context;
       },
       ErrorCode::Vulkan);
@@ -336,7 +354,7 @@ Context::~Context() {
   if (device_ != VK_NULL_HANDLE) {
     // A lost device cannot be helped while tearing down; destroy regardless.
     (void)vkDeviceWaitIdle(device_);
-    if (one_time_pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, one_time_pool_, nullptr);
+    one_time_pool_.reset();
     vkDestroyDevice(device_, nullptr);
   }
   if (messenger_ != VK_NULL_HANDLE) {
@@ -386,20 +404,13 @@ void Context::set_name(VkObjectType type, std::uint64_t handle, const char* name
 
 VkCommandBuffer Context::begin_one_time() {
   if (borrowed_) throw std::logic_error("soundpaint never submits to a host's queues");
-  VkCommandBufferAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  allocate.commandPool = one_time_pool_;
-  allocate.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  allocate.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkAllocateCommandBuffers(device_, &allocate, &cmd));
-  set_name(VK_OBJECT_TYPE_COMMAND_BUFFER, cmd, "soundpaint one-time command buffer");
+  VkCommandBuffer cmd = allocate_command_buffer(*this, one_time_pool_.get(), "soundpaint one-time command buffer");
 
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   const VkResult result = vkBeginCommandBuffer(cmd, &begin);
-  if (result != VK_SUCCESS) vkFreeCommandBuffers(device_, one_time_pool_, 1, &cmd);
+  if (result != VK_SUCCESS) vkFreeCommandBuffers(device_, one_time_pool_.get(), 1, &cmd);
   SP_VK_CHECK(result);
   return cmd;
 }
@@ -411,14 +422,11 @@ void Context::end_one_time_and_wait(VkCommandBuffer cmd) {
     VkCommandPool pool;
     VkCommandBuffer cmd;
     ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-  } free_on_exit{device_, one_time_pool_, cmd};
+  } free_on_exit{device_, one_time_pool_.get(), cmd};
 
   SP_VK_CHECK(vkEndCommandBuffer(cmd));
-  VkFenceCreateInfo fence_info{};
-  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  VkFence raw_fence = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &raw_fence));
-  const UniqueFence fence(device_, raw_fence);
+  const UniqueFence fence = create_fence(*this, "soundpaint one-time fence");
+  const VkFence raw_fence = fence.get();
 
   submit(cmd, raw_fence);
   SP_VK_CHECK(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX));

@@ -12,6 +12,11 @@
 #include <vulkan/vulkan.h>
 
 #include "soundpaint/result.h"
+#include "vk/handle.h"
+
+namespace sp {
+struct HostVulkan;
+}
 
 namespace sp::vk {
 
@@ -29,32 +34,27 @@ struct ContextSettings {
   std::vector<std::string> device_extensions;
 };
 
-// A device the host application created and keeps (Visualizer). soundpaint
-// creates its objects on it but never submits, waits or destroys it.
-struct BorrowedDevice {
-  VkInstance instance = VK_NULL_HANDLE;
-  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  // Families whose queues will run soundpaint's commands: buffers they share
-  // are created VK_SHARING_MODE_CONCURRENT when there are two.
-  std::vector<std::uint32_t> queue_families;
-  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
-  const VkAllocationCallbacks* allocator = nullptr;
-  // The pNext chain the host passed in VkDeviceCreateInfo; when set, the
-  // features soundpaint needs are checked as enabled, not only supported.
-  const void* enabled_features = nullptr;
-};
+// What the compute kernels need of the device's subgroups
+// (shaders/gpu_bindings.glsl: GL_KHR_shader_subgroup_basic, _ballot and
+// _arithmetic in compute shaders): the missing parts, each preceded by a
+// space, or "" when all are there.
+std::string missing_subgroup_support(const VkPhysicalDeviceSubgroupProperties& subgroup);
 
 class Context {
  public:
   // Errors (ErrorCode::Vulkan): no Vulkan loader/driver, no device with
-  // Vulkan 1.3 and a compute+graphics queue, no device matching the name,
+  // Vulkan 1.3 and a compute+graphics queue, a device without the subgroup
+  // operations the kernels use, no device matching the name,
   // validation requested but the layer is not installed.
   static Result<std::unique_ptr<Context>> create(const ContextSettings& settings = {});
-  // Wraps the host's device. Errors (ErrorCode::Vulkan): a null handle, a
-  // device below Vulkan 1.3 or without a required feature (named), a queue
-  // family out of range or without compute.
-  static Result<std::unique_ptr<Context>> borrow(const BorrowedDevice& host);
+  // Wraps the host's device (sp::HostVulkan, include/soundpaint/visualizer.h,
+  // read in place: its handles, allocator and pipeline cache are used as
+  // they are). soundpaint creates its objects on it but never submits,
+  // waits or destroys it. Errors: ErrorCode::InvalidArgument for a null
+  // handle or a queue family that is unset, out of range or without
+  // compute; ErrorCode::Vulkan for a device below Vulkan 1.3 or without a
+  // required feature or subgroup operation (named).
+  static Result<std::unique_ptr<Context>> borrow(const HostVulkan& host);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -66,7 +66,9 @@ class Context {
   bool borrowed() const { return borrowed_; }
   const VkAllocationCallbacks* allocator() const { return allocator_; }
   VkPipelineCache pipeline_cache() const { return pipeline_cache_; }
-  // Queue families that share buffers (see BorrowedDevice); one when owned.
+  // Queue families whose queues run soundpaint's commands: the host's
+  // queue_family and, when set and different, its compute_queue_family, whose
+  // shared buffers are then VK_SHARING_MODE_CONCURRENT. One when owned.
   const std::vector<std::uint32_t>& sharing_families() const { return sharing_families_; }
   std::uint32_t queue_family() const { return queue_family_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
@@ -108,6 +110,8 @@ class Context {
 
  private:
   Context() = default;
+  // Reads the device's properties; throws (ErrorCode::Vulkan) when its
+  // subgroups lack what the kernels use.
   void query_device_properties();
   VkCommandBuffer begin_one_time();
   void end_one_time_and_wait(VkCommandBuffer cmd);
@@ -122,7 +126,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_properties_{};
   std::string driver_info_;
   std::uint32_t subgroup_size_ = 1;
-  VkCommandPool one_time_pool_ = VK_NULL_HANDLE;
+  UniqueCommandPool one_time_pool_;  // owned contexts only
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   bool borrowed_ = false;
   const VkAllocationCallbacks* allocator_ = nullptr;
