@@ -47,6 +47,7 @@ struct SceneTriangle {
   vec3 color;    // linear RGB tint
   uint pad1;
 };
+SP_CHECK_LAYOUT(sizeof(SceneTriangle) == 64 && alignof(SceneTriangle) == 4 && offsetof(SceneTriangle, shading) == 12 && offsetof(SceneTriangle, v1) == 16 && offsetof(SceneTriangle, layer) == 28 && offsetof(SceneTriangle, v2) == 32 && offsetof(SceneTriangle, color) == 48);
 
 // Push constants of the scene pass, 96 bytes.
 struct ScenePush {
@@ -56,6 +57,7 @@ struct ScenePush {
   vec3 light_dir;   // unit vector towards the light
   float fog_distance;  // metres at which distant surfaces have faded 63% into the clear colour; 0: no fog
 };
+SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && offsetof(ScenePush, ambient) == 76 && offsetof(ScenePush, light_dir) == 80 && offsetof(ScenePush, fog_distance) == 92);
 
 // IndicatorPush.flags: what the display settings (include/soundpaint/
 // display.h) turn on.
@@ -107,6 +109,7 @@ struct DisplaySource {
   vec3 color;        // linear RGB: its own colour, else its category's palette colour
   uint shape_flags;  // SP_SHAPE_* | SP_SOURCE_*
 };
+SP_CHECK_LAYOUT(sizeof(DisplaySource) == 32 && offsetof(DisplaySource, category) == 12 && offsetof(DisplaySource, color) == 16 && offsetof(DisplaySource, shape_flags) == 28);
 
 // Push constants of the indicator pass, 128 bytes (Vulkan's guaranteed
 // minimum of maxPushConstantsSize).
@@ -128,6 +131,7 @@ struct IndicatorPush {
   float inv_indicator_size;  // 1 / indicator_size: size * this = E / E0
   float viewport_height;     // pixels; 0 when unknown
 };
+SP_CHECK_LAYOUT(sizeof(IndicatorPush) == 128 && offsetof(IndicatorPush, eye) == 64 && offsetof(IndicatorPush, current_step) == 76 && offsetof(IndicatorPush, dt) == 80 && offsetof(IndicatorPush, lifetime) == 84 && offsetof(IndicatorPush, flags) == 108 && offsetof(IndicatorPush, depth_a) == 112);
 
 // Push constants of the display prepass (display_prepass.comp), 32 bytes.
 struct DisplayPrepassPush {
@@ -140,6 +144,7 @@ struct DisplayPrepassPush {
   uint ring_capacity;
   float inv_indicator_size;
 };
+SP_CHECK_LAYOUT(sizeof(DisplayPrepassPush) == 32);
 
 // Push constants of the off-screen arrows, 96 bytes.
 struct ArrowPush {
@@ -150,6 +155,9 @@ struct ArrowPush {
   vec3 eye;
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(ArrowPush) == 96 && offsetof(ArrowPush, viewport) == 64 && offsetof(ArrowPush, eye) == 80);
+// Vulkan guarantees 128 bytes of push constants on every device.
+SP_CHECK_LAYOUT(sizeof(ScenePush) <= 128 && sizeof(IndicatorPush) <= 128 && sizeof(ArrowPush) <= 128);
 
 SP_END_NAMESPACE
 

@@ -56,6 +56,7 @@ struct QueueArgs {
   uint resolving_groups_z;
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(QueueArgs) == 48 && offsetof(QueueArgs, active_groups_x) == 16 && offsetof(QueueArgs, resolving_groups_x) == 32);
 
 // GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the
 // indicator draw instances from.
@@ -91,6 +92,7 @@ struct Control {
   uint pad2;
   uint pad3;
 };
+SP_CHECK_LAYOUT(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 
 // Written by the host before each step's submit.
 struct StepInput {
@@ -104,6 +106,7 @@ struct StepInput {
   uint pad0;
   uint pad1;
 };
+SP_CHECK_LAYOUT(sizeof(StepInput) == 96 && sizeof(StepInput) % 16 == 0);
 
 // Push constants of the admission kernel (admit.comp).
 #define SP_ADMIT_HISTOGRAM 0u
@@ -120,6 +123,7 @@ struct WavefrontPush {
   uint max_rays;   // capacity of each queue
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(WavefrontPush) == 16);
 
 SP_END_NAMESPACE
 

@@ -12,8 +12,14 @@
 #define SP_LANG_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+
+// A shared struct's layout, checked where it is declared: the C++ offsets
+// must be the std430 ones GLSL uses (every vec3 is paired with a 4-byte
+// scalar, so they are). GLSL ignores the check.
+#define SP_CHECK_LAYOUT(condition) static_assert(condition, "C++ and std430 layouts of a shared struct differ")
 
 #define SP_BEGIN_NAMESPACE namespace sp::shader {
 #define SP_END_NAMESPACE }
@@ -50,6 +56,7 @@ SP_END_NAMESPACE
 #define SP_INOUT(T) inout T
 #define SP_OUT(T) out T
 #define SP_PRECISE precise
+#define SP_CHECK_LAYOUT(condition)
 
 #endif
 #endif  // SP_LANG_H

@@ -26,6 +26,7 @@
 SP_BEGIN_NAMESPACE
 
 // Per-ray constants of the watertight test and the slab test.
+// Local to one traversal, never in a buffer: no layout to agree on.
 struct RayQuery {
   vec3 origin;
   float tmin;  // hits must lie in (tmin, tmax]

@@ -79,6 +79,7 @@ struct BvhNode {
   vec3 bmax;
   uint count;
 };
+SP_CHECK_LAYOUT(sizeof(BvhNode) == 32 && offsetof(BvhNode, left_or_first) == 12 && offsetof(BvhNode, bmax) == 16 && offsetof(BvhNode, count) == 28 && alignof(BvhNode) == 4);
 
 // A triangle in BVH leaf order, 64 bytes. scene_index is its position in the
 // scene's triangle soup (ties between equal hit distances go to the lowest).
@@ -98,6 +99,7 @@ struct BvhTriangle {
   vec3 normal;
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(BvhTriangle) == 64 && offsetof(BvhTriangle, layer) == 12 && offsetof(BvhTriangle, v1) == 16 && offsetof(BvhTriangle, scene_index) == 28 && offsetof(BvhTriangle, v2) == 32 && offsetof(BvhTriangle, solid) == 44 && offsetof(BvhTriangle, normal) == 48);
 
 // Acoustic properties of one layer (docs/model.md's symbols: rho_ref,
 // alpha_layer).
@@ -107,6 +109,7 @@ struct LayerAcoustics {
   float sheet_thickness;      // > 0: the layer's faces are sheets this thick (metres); 0: faces of solids
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(LayerAcoustics) == 16 && offsetof(LayerAcoustics, sheet_thickness) == 8);
 
 // Per-step parameters of the ray model.
 struct SimParams {
@@ -129,6 +132,7 @@ struct SimParams {
   uint pad1;
   uint pad2;
 };
+SP_CHECK_LAYOUT(sizeof(SimParams) == 64 && offsetof(SimParams, diffraction) == 32 && offsetof(SimParams, diffraction_gain) == 48);
 
 // The edges of one triangle that sound can bend round, in leaf order like
 // BvhTriangle (src/bvh/diffraction_edges.h). Edge i runs from vertex i to
@@ -143,6 +147,7 @@ struct TriangleEdges {
   vec3 turn_sin;
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(TriangleEdges) == 32 && offsetof(TriangleEdges, exposed) == 12 && offsetof(TriangleEdges, turn_sin) == 16);
 
 // A source as seen by one step (registry and distribution already done).
 struct StepSource {
@@ -155,6 +160,7 @@ struct StepSource {
   uint ray_count;
   uint source_id;
 };
+SP_CHECK_LAYOUT(sizeof(StepSource) == 48 && offsetof(StepSource, color) == 16 && offsetof(StepSource, intensity) == 32 && offsetof(StepSource, source_id) == 44);
 
 // One ray's state between wavefront iterations, 96 bytes.
 struct RayState {
@@ -177,6 +183,7 @@ struct RayState {
   uint pad0;
   uint pad1;
 };
+SP_CHECK_LAYOUT(sizeof(RayState) == 96 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 && offsetof(RayState, entry_layer) == 44 && offsetof(RayState, state) == 48 && offsetof(RayState, loudness) == 76 && offsetof(RayState, entry_triangle) == 80);
 
 // One indicator, 96 bytes. iteration and ray_index give the canonical order
 // (step, iteration, ray_index, kind) in which both backends list them.
@@ -198,12 +205,14 @@ struct Indicator {
   uint ray_index;
   uint iteration;
 };
+SP_CHECK_LAYOUT(sizeof(Indicator) == 96 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 && offsetof(Indicator, dir) == 48 && offsetof(Indicator, path_length) == 60 && offsetof(Indicator, kind) == 64 && offsetof(Indicator, iteration) == 92 && alignof(Indicator) == 4);
 
 // Closest-hit query result; triangle is a leaf-order index or SP_INVALID.
 struct HitInfo {
   float t;
   uint triangle;
 };
+SP_CHECK_LAYOUT(sizeof(HitInfo) == 8);
 
 // What one cast found, 16 bytes. Active ray: the closest hit (matter_loss 0).
 // ResolvingPenetration ray: the exit face and its distance t from p_in, and
@@ -215,6 +224,7 @@ struct CastResult {
   float matter_loss;
   uint pad0;
 };
+SP_CHECK_LAYOUT(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) == 8);
 
 // The nearest faces along a segment, sorted by (t, leaf order): what a
 // matter query sees. count == SP_MATTER_MAX_HITS means there may be more
@@ -227,6 +237,7 @@ struct HitList {
   uint key[SP_MATTER_MAX_HITS];
   uint count;
 };
+SP_CHECK_LAYOUT(sizeof(HitList) == 4 * (3 * SP_MATTER_MAX_HITS + 1));
 
 SP_END_NAMESPACE
 
