@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "soundpaint/result.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::view {
@@ -81,9 +82,9 @@ void Swapchain::create(VkExtent2D wanted, VkSwapchainKHR old) {
   info.presentMode = VK_PRESENT_MODE_FIFO_KHR;
   info.clipped = VK_TRUE;
   info.oldSwapchain = old;
-  VkSwapchainKHR raw = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateSwapchainKHR(device, &info, nullptr, &raw));
-  swapchain_ = UniqueSwapchain(device, raw);
+  swapchain_ = vk::create_object<UniqueSwapchain>(context_, vkCreateSwapchainKHR, info, VK_OBJECT_TYPE_SWAPCHAIN_KHR,
+                                                  "viewer swapchain");
+  const VkSwapchainKHR raw = swapchain_.get();
 
   std::uint32_t image_count = 0;
   SP_VK_CHECK(vkGetSwapchainImagesKHR(device, raw, &image_count, nullptr));
@@ -97,18 +98,16 @@ void Swapchain::create(VkExtent2D wanted, VkSwapchainKHR old) {
     view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view_info.format = format_;
     view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
-    views_.emplace_back(device, view);
-    raw_views_.push_back(view);
+    views_.push_back(vk::create_object<vk::UniqueImageView>(context_, vkCreateImageView, view_info,
+                                                            VK_OBJECT_TYPE_IMAGE_VIEW, "viewer swapchain view"));
+    raw_views_.push_back(views_.back().get());
     depths_.emplace_back(context_, extent_.width, extent_.height, kDepthFormat,
                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                          VK_IMAGE_ASPECT_DEPTH_BIT, "viewer depth");  // sampled: spots clip to surfaces
     VkSemaphoreCreateInfo semaphore_info{};
     semaphore_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
-    VkSemaphore semaphore = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateSemaphore(device, &semaphore_info, nullptr, &semaphore));
-    rendered_.emplace_back(device, semaphore);
+    rendered_.push_back(vk::create_object<UniqueSemaphore>(context_, vkCreateSemaphore, semaphore_info,
+                                                           VK_OBJECT_TYPE_SEMAPHORE, "viewer image rendered"));
   }
 }
 

@@ -29,6 +29,7 @@
 #include "view/window.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
+#include "vk/objects.h"
 #include "vk/vk_check.h"
 
 namespace sp::view {
@@ -114,17 +115,6 @@ Painting paint(vk::Context& context, const Swapchain& swapchain, Session& sessio
   return painting;
 }
 
-VkCommandBuffer allocate_command_buffer(VkDevice device, VkCommandPool pool) {
-  VkCommandBufferAllocateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  info.commandPool = pool;
-  info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  info.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkAllocateCommandBuffers(device, &info, &cmd));
-  return cmd;
-}
-
 // The scene pass clears and writes depth; the indicator pass then tests
 // against it and samples it read-only (clipping spots to surfaces).
 void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_view, VkExtent2D extent, bool first) {
@@ -206,39 +196,26 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
   swapchain_ = std::make_unique<Swapchain>(*context_, surface_->get(), window_.framebuffer_size());
 
   const VkDevice device = context_->device();
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool_info.queueFamilyIndex = context_->queue_family();
-  VkCommandPool pool = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateCommandPool(device, &pool_info, nullptr, &pool));
-  pool_ = vk::UniqueCommandPool(device, pool);
+  pool_ = vk::create_command_pool(*context_, context_->queue_family(), VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                  "viewer frames");
   for (std::uint32_t i = 0; i < kFramesInFlight; ++i) {
-    commands_[i] = allocate_command_buffer(device, pool);
+    commands_[i] = vk::allocate_command_buffer(*context_, pool_.get(), "viewer frame");
     VkFenceCreateInfo fence_info{};
     fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-    fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-    VkFence fence = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateFence(device, &fence_info, nullptr, &fence));
-    fences_[i] = vk::UniqueFence(device, fence);
+    fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first wait finds nothing in flight
+    fences_[i] = vk::create_object<vk::UniqueFence>(*context_, vkCreateFence, fence_info, VK_OBJECT_TYPE_FENCE,
+                                                    "viewer frame done");
     VkSemaphoreCreateInfo semaphore_info{};
     semaphore_info.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
-    VkSemaphore semaphore = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateSemaphore(device, &semaphore_info, nullptr, &semaphore));
-    acquired_[i] = UniqueSemaphore(device, semaphore);
+    acquired_[i] = vk::create_object<UniqueSemaphore>(*context_, vkCreateSemaphore, semaphore_info,
+                                                      VK_OBJECT_TYPE_SEMAPHORE, "viewer image acquired");
     totals_[i] = vk::Buffer(*context_, sizeof(SimulationTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUsage::Readback, "viewer totals");
   }
   // Timestamps are optional; this limit promises them on every graphics and
   // compute queue.
   if (context_->properties().limits.timestampComputeAndGraphics) {
-    VkQueryPoolCreateInfo query_info{};
-    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    query_info.queryCount = kQueriesPerFrame * kFramesInFlight;
-    VkQueryPool query_pool = VK_NULL_HANDLE;
-    SP_VK_CHECK(vkCreateQueryPool(device, &query_info, nullptr, &query_pool));
-    queries_ = vk::UniqueQueryPool(device, query_pool);
+    queries_ = vk::create_timestamp_pool(*context_, kQueriesPerFrame * kFramesInFlight, "viewer stage timestamps");
     timestamp_ms_ = double(context_->properties().limits.timestampPeriod) * 1e-6;
   }
 
