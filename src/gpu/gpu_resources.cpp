@@ -8,6 +8,7 @@
 #include "emit.comp.spv.h"
 #include "gpu/gpu_layout_checks.h"
 #include "sp_admission.h"
+#include "sp_draw_types.h"
 #include "prepare.comp.spv.h"
 #include "resolve.comp.spv.h"
 #include "sim/step_plan.h"
@@ -112,7 +113,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                                 "control readback");
 
   std::vector<shader::Control> initial(1);
-  initial[0].draw_vertex_count = 6;  // one quad per indicator instance, as two triangles
+  initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
   const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE, 0u);
   StagingPlan staging;
