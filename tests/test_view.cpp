@@ -124,6 +124,24 @@ TEST(View, AConfigFileSavedWhileRunningIsReloaded) {
   EXPECT_GT(test::differing_pixels(*reloaded, *without, 24, nullptr), 200u);
 }
 
+TEST(View, TheStartViewComesFromTheCommandLine) {
+  // Looking at the floor from above and at the ceiling from below: two
+  // different pictures of the same level, each drawn without a message.
+  SKIP_WITHOUT_XVFB();
+  ScratchDir dir("view-camera");
+  auto shot = [&](const std::string& look, const std::string& name) {
+    auto r = run_command(under_xvfb(kScene + " --backend cpu --width 160 --height 120 --frames 2 --no-panel " + look +
+                                    " --screenshot " + (dir / name).string()),
+                         dir.path());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return test::load_png(dir / name);
+  };
+  const auto down = shot("--camera-pos 0,2.5,0 --look-at 0.1,0,0", "down.png");
+  const auto up = shot("--camera-pos 0,0.5,0 --look-at 0.1,3,0", "up.png");
+  ASSERT_TRUE(down && up);
+  EXPECT_GT(test::differing_pixels(*down, *up, 24, nullptr), std::size_t{160} * 120 / 4);
+}
+
 TEST(View, WithoutADisplayFailsWithOneLineSuggestingRender) {
   ScratchDir dir("view-headless");
   auto r = run_command("env -u DISPLAY -u WAYLAND_DISPLAY " + kCli + " view " + kScene + " --frames 1", dir.path());

@@ -58,7 +58,7 @@ SP_INLINE uint sp_nearest_diffracting_edge(BvhTriangle tri, TriangleEdges edges,
   nearest = position;
   for (uint i = 0u; i < 3u; ++i) {
     if (((edges.exposed >> i) & 1u) == 0u) continue;
-    float turn_cos = edges.turn_cos[i];
+    float turn_cos = edges.turn_cos[int(i)];  // int: glm indexes with int (GLSL takes either)
     if (!(turn_cos <= p.edge_cos_max)) continue;
     if (!front && turn_cos > -1.0f) continue;
     vec3 a = sp_triangle_corner(tri, i);
@@ -102,8 +102,8 @@ SP_INLINE uint sp_try_diffract(SP_INOUT(RayState) r, BvhTriangle tri, TriangleEd
   SP_PRECISE vec3 ab = corner_b - corner_a;
   SP_PRECISE vec3 along = ab / sqrt(dot(ab, ab));
   SP_PRECISE vec3 out_of_face = cross(along, tri.normal);  // in the face's plane, across the edge, outwards
-  float turn_cos = edges.turn_cos[edge];
-  float turn_sin = edges.turn_sin[edge];
+  float turn_cos = edges.turn_cos[int(edge)];
+  float turn_sin = edges.turn_sin[int(edge)];
   SP_PRECISE vec3 far_normal = turn_cos <= -1.0f ? -normal : tri.normal * turn_cos + out_of_face * turn_sin;
 
   // Keller's cone: the part along the edge stays; the part across it turns
