@@ -96,19 +96,24 @@ TEST(View, AResizedWindowGetsANewSwapchainAndKeepsDrawing) {
 }
 
 TEST(View, AConfigFileSavedWhileRunningIsReloaded) {
-  // The run starts silent (no rays); 1.5 s in (after about a second of
-  // start-up), the file is saved with rays: the last frame shows spots, and
-  // stderr says it reloaded. Silent frames take a few milliseconds, so 800
-  // of them outlast the wait.
+  // The run starts silent (no rays); once the viewer says it watches the
+  // file, the file is saved with rays: the last frame shows spots, and
+  // stderr says it reloaded. Silent frames take milliseconds, so 300 of
+  // them leave time for the save and the check (every 30 frames).
   SKIP_WITHOUT_XVFB();
   ScratchDir dir("view-reload");
   const auto config = dir / "live.json";
+  const auto log = dir / "viewer.err";
   std::ofstream(config) << R"({"ray_budget": 0})";
-  const std::string silent_run = under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 800 --no-panel --config " +
-                                            config.string() + " --screenshot " + (dir / "reloaded.png").string());
   std::ofstream(dir / "loud.json") << R"({"ray_budget": 100})";
-  auto r = run_command("{ (sleep 1.5; cp " + (dir / "loud.json").string() + " " + config.string() + ") & " +
-                           silent_run + "; wait; }",
+  const std::string viewer = under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 300 --no-panel --config " +
+                                        config.string() + " --screenshot " + (dir / "reloaded.png").string());
+  // At most 30 s of waiting, so a viewer that fails early cannot hang the test.
+  const std::string save_when_watched = "(for i in $(seq 600); do grep -q watching " + log.string() +
+                                        " 2>/dev/null && break; sleep 0.05; done; cp " + (dir / "loud.json").string() +
+                                        " " + config.string() + ")";
+  auto r = run_command("{ " + save_when_watched + " & " + viewer + " 2>" + log.string() + "; status=$?; wait; cat " +
+                           log.string() + " >&2; exit $status; }",
                        dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("reloaded"), std::string::npos) << r.err;

@@ -233,6 +233,7 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
   panel_->set_visible(options_.panel);
   stats_.device = context_->description();
   config_time_ = modified(options_.config_path);
+  if (options_.config_path) std::fprintf(stderr, "view: watching %s for changes\n", options_.config_path->c_str());
   last_cursor_ = window_.cursor();
 }
 
