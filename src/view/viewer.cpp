@@ -291,16 +291,20 @@ void Viewer::place_or_play(bool play) {
 }
 
 void Viewer::handle_input(float seconds) {
-  if (!panel_->wants_keyboard()) {
-    if (window_.key_pressed(GLFW_KEY_ESCAPE)) window_.request_close();
-    if (window_.key_pressed(GLFW_KEY_SPACE)) paused_ = !paused_;
-    if (window_.key_pressed(GLFW_KEY_N)) step_once_ = true;
-    if (window_.key_pressed(GLFW_KEY_P)) session_.listener_pinned = !session_.listener_pinned;
-    if (window_.key_pressed(GLFW_KEY_F1)) panel_->set_visible(!panel_->visible());
-    if (window_.key_pressed(GLFW_KEY_B)) {
-      session_.backend = painting_.visualizer->backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
-      rebuild_ = true;
-    }
+  // Presses are taken every frame, so one made while the panel had the
+  // keyboard or mouse does not fire later.
+  const bool keys = !panel_->wants_keyboard();
+  if (window_.key_pressed(GLFW_KEY_ESCAPE) && keys) window_.request_close();
+  if (window_.key_pressed(GLFW_KEY_SPACE) && keys) paused_ = !paused_;
+  if (window_.key_pressed(GLFW_KEY_N) && keys) step_once_ = true;
+  if (window_.key_pressed(GLFW_KEY_P) && keys) session_.listener_pinned = !session_.listener_pinned;
+  if (window_.key_pressed(GLFW_KEY_F1) && keys) panel_->set_visible(!panel_->visible());
+  if (window_.key_pressed(GLFW_KEY_B) && keys) {
+    session_.backend = painting_.visualizer->backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
+    rebuild_ = true;
+  }
+  const bool shift = window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT);
+  if (keys) {
     glm::vec3 axes(0.0f);
     axes.z += window_.key_down(GLFW_KEY_W) ? 1.0f : 0.0f;
     axes.z -= window_.key_down(GLFW_KEY_S) ? 1.0f : 0.0f;
@@ -308,15 +312,12 @@ void Viewer::handle_input(float seconds) {
     axes.x -= window_.key_down(GLFW_KEY_A) ? 1.0f : 0.0f;
     axes.y += window_.key_down(GLFW_KEY_E) ? 1.0f : 0.0f;
     axes.y -= window_.key_down(GLFW_KEY_Q) ? 1.0f : 0.0f;
-    const bool fast = window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT);
-    camera_.fly(axes, fast ? 4.0f * kFlySpeed : kFlySpeed, seconds);
+    camera_.fly(axes, shift ? 4.0f * kFlySpeed : kFlySpeed, seconds);
   }
   const glm::vec2 cursor = window_.cursor();
-  if (!panel_->wants_mouse()) {
-    if (window_.mouse_down(GLFW_MOUSE_BUTTON_RIGHT)) camera_.turn(cursor - last_cursor_);
-    if (window_.mouse_clicked(GLFW_MOUSE_BUTTON_LEFT))
-      place_or_play(window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT));
-  }
+  const bool mouse = !panel_->wants_mouse();
+  if (mouse && window_.mouse_down(GLFW_MOUSE_BUTTON_RIGHT)) camera_.turn(cursor - last_cursor_);
+  if (window_.mouse_clicked(GLFW_MOUSE_BUTTON_LEFT) && mouse) place_or_play(shift);
   last_cursor_ = cursor;
 }
 

@@ -32,7 +32,22 @@ Window::Window(std::uint32_t width, std::uint32_t height, const std::string& tit
     glfwTerminate();
     throw Exception(ErrorCode::InvalidArgument, "view: cannot open a window (" + error + ")");
   }
-  previous_keys_.assign(GLFW_KEY_LAST + 1, GLFW_RELEASE);
+  pressed_keys_.assign(GLFW_KEY_LAST + 1, false);
+  // Installed before the ImGui panel's, which chains to them.
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, on_key);
+  glfwSetMouseButtonCallback(window_, on_mouse_button);
+}
+
+void Window::on_key(GLFWwindow* window, int key, int, int action, int) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (self != nullptr && action == GLFW_PRESS && key >= 0 && key <= GLFW_KEY_LAST)
+    self->pressed_keys_[static_cast<std::size_t>(key)] = true;
+}
+
+void Window::on_mouse_button(GLFWwindow* window, int button, int action, int) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (self != nullptr && action == GLFW_PRESS && button >= 0 && button < 31) self->clicked_buttons_ |= 1 << button;
 }
 
 Window::~Window() {
@@ -80,19 +95,17 @@ void Window::request_size(std::uint32_t width, std::uint32_t height) const {
 bool Window::key_down(int key) const { return glfwGetKey(window_, key) == GLFW_PRESS; }
 
 bool Window::key_pressed(int key) {
-  const int state = glfwGetKey(window_, key);
-  const bool pressed = state == GLFW_PRESS && previous_keys_[static_cast<std::size_t>(key)] != GLFW_PRESS;
-  previous_keys_[static_cast<std::size_t>(key)] = state;
+  const bool pressed = pressed_keys_[static_cast<std::size_t>(key)];
+  pressed_keys_[static_cast<std::size_t>(key)] = false;
   return pressed;
 }
 
 bool Window::mouse_down(int button) const { return glfwGetMouseButton(window_, button) == GLFW_PRESS; }
 
 bool Window::mouse_clicked(int button) {
-  const bool down = mouse_down(button);
-  const bool was = (previous_buttons_ >> button) & 1;
-  previous_buttons_ = down ? previous_buttons_ | (1 << button) : previous_buttons_ & ~(1 << button);
-  return down && !was;
+  const bool clicked = ((clicked_buttons_ >> button) & 1) != 0;
+  clicked_buttons_ &= ~(1 << button);
+  return clicked;
 }
 
 glm::vec2 Window::cursor() const {

@@ -39,16 +39,21 @@ class Window {
   void request_size(std::uint32_t width, std::uint32_t height) const;
 
   bool key_down(int key) const;
-  // True once per press (edge detection in the frame loop's polling).
+  // True once per press since the last call, however short the press:
+  // GLFW's callbacks record presses between the frame loop's polls (a
+  // quick tap or click would fall between two polls of the state).
   bool key_pressed(int key);
   bool mouse_down(int button) const;
   bool mouse_clicked(int button);
   glm::vec2 cursor() const;
 
  private:
+  static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void on_mouse_button(GLFWwindow* window, int button, int action, int mods);
+
   GLFWwindow* window_ = nullptr;
-  std::vector<int> previous_keys_;  // by GLFW key code
-  int previous_buttons_ = 0;        // bit per mouse button
+  std::vector<bool> pressed_keys_;  // by GLFW key code: pressed since the last key_pressed()
+  int clicked_buttons_ = 0;         // bit per mouse button: pressed since the last mouse_clicked()
 };
 
 }  // namespace sp::view
