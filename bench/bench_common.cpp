@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <glm/glm.hpp>
+
 #include "generated_level.h"
 #include "io/output.h"
 

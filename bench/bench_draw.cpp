@@ -23,7 +23,9 @@
 #include "draw/renderer.h"
 #include "draw/view_camera.h"
 #include "io/output.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 #include "vk/context.h"
 
 namespace {
@@ -96,11 +98,11 @@ Options parse(int argc, char** argv) {
 // side, energies and intensities spread out, spread over the level's
 // sources (their shapes) in 15 colours, all born at step 0 (drawn 6 steps
 // later: faded in, not yet faded out).
-std::vector<sp::Indicator> synthetic_indicators(const sp::World& world, const sp::draw::ViewCamera& camera,
+std::vector<sp::shader::Indicator> synthetic_indicators(const sp::World& world, const sp::draw::ViewCamera& camera,
                                                 std::uint32_t count, float radius, std::uint32_t seed) {
   std::vector<const sp::BvhTriangle*> candidates;
   std::vector<double> areas;
-  for (const sp::BvhTriangle& t : world.bvh.triangles) {
+  for (const sp::BvhTriangle& t : world.geometry->bvh.triangles) {
     const glm::vec3 centre = (t.v0 + t.v1 + t.v2) / 3.0f;
     const glm::vec3 to = centre - camera.eye;
     if (glm::length(to) > radius || glm::dot(to, camera.forward) <= 0.0f) continue;
@@ -111,12 +113,12 @@ std::vector<sp::Indicator> synthetic_indicators(const sp::World& world, const sp
   std::mt19937 rng(seed);
   std::discrete_distribution<std::size_t> pick(areas.begin(), areas.end());
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::vector<sp::Indicator> indicators(count);
+  std::vector<sp::shader::Indicator> indicators(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const sp::BvhTriangle& t = *candidates[pick(rng)];
     float a = unit(rng), b = unit(rng);
     if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
-    sp::Indicator& ind = indicators[i];
+    sp::shader::Indicator& ind = indicators[i];
     ind.position = t.v0 + a * (t.v1 - t.v0) + b * (t.v2 - t.v0);
     ind.normal = glm::dot(t.normal, camera.eye - ind.position) >= 0.0f ? t.normal : -t.normal;
     ind.energy = 0.2f + 0.8f * unit(rng);

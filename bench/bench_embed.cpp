@@ -18,10 +18,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_common.h"
+#include "core/glm_interop.h"
 #include "draw/render_target.h"
 #include "draw/view_camera.h"
 #include "generated_level.h"
+#include "sim/sound_scene_backend.h"
 #include "soundpaint/visualizer.h"
+#include "sp_types.h"
 #include "vk/context.h"
 #include "vk/handle.h"
 #include "vk/vk_check.h"
@@ -174,15 +177,15 @@ void bench_record_calls(const Options& o, const sp::World& world) {
 // centre become instance 0.
 sp::Scene with_door(sp::Scene scene) {
   glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const glm::vec3& v : scene.vertices) {
-    lo = glm::min(lo, v);
-    hi = glm::max(hi, v);
+  for (const sp::Vec3& v : scene.vertices) {
+    lo = glm::min(lo, sp::to_glm(v));
+    hi = glm::max(hi, sp::to_glm(v));
   }
   const glm::vec3 centre = 0.5f * (lo + hi);
   scene.instance_names = {"door"};
   scene.triangle_instances.assign(scene.triangle_count(), sp::kStaticInstance);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
-    const glm::vec3 c = (scene.vertices[3 * t] + scene.vertices[3 * t + 1] + scene.vertices[3 * t + 2]) / 3.0f;
+    const glm::vec3 c = (sp::to_glm(scene.vertices[3 * t]) + sp::to_glm(scene.vertices[3 * t + 1]) + sp::to_glm(scene.vertices[3 * t + 2])) / 3.0f;
     if (glm::all(glm::lessThan(glm::abs(c - centre), glm::vec3(1.0f)))) scene.triangle_instances[t] = 0;
   }
   return scene;
@@ -200,7 +203,7 @@ void bench_refit(const std::string& name, sp::Scene scene, const sp::Config& con
     const glm::mat4 swing = glm::rotate(glm::mat4(1.0f), glm::radians(2.0f * static_cast<float>(k + 1)), {0, 1, 0});
     (void)live.set_instance_transform(0, swing);
     const auto start = Clock::now();
-    const sp::BvhChanges changes = live.update_geometry();
+    const sp::BvhChanges changes = sp::detail::SoundSceneBackend::update_geometry(live);
     ms.push_back(ms_since(start));
     bytes = 0;
     for (const auto& r : changes.nodes) bytes += (r.last - r.first) * sizeof(sp::BvhNode);

@@ -29,10 +29,12 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "core/glm_interop.h"
 #include "embree_cast.h"
 #include "sim/step_plan.h"
 #include "sim/thread_pool.h"
 #include "io/output.h"
+#include "sim/world_geometry.h"
 #include "sp_ray_model.h"
 
 namespace {
@@ -174,6 +176,7 @@ int run(const CommandLine& cli, const Options& options) {
   Json scenes = Json::array();
   for (const std::string& spec : options.scenes) {
     sp::Scene scene = spbench::load_scene_or_exit(cli, spec);
+    const std::vector<glm::vec3> vertices = sp::to_glm(scene.vertices);  // what build_bvh and Embree take
     sp::Config config;
     config.ray_budget = options.budget;
     spbench::apply_pattern(scene, options.pattern, config.dt);
@@ -184,7 +187,7 @@ int run(const CommandLine& cli, const Options& options) {
     }
     const sp::World& world = *made;
     std::printf("\nscene %s: %zu triangles, %zu sources; BVH %zu nodes, depth %u\n", spec.c_str(),
-                scene.triangle_count(), scene.sources.size(), world.bvh.nodes.size(), world.bvh.depth);
+                scene.triangle_count(), scene.sources.size(), world.geometry->bvh.nodes.size(), world.geometry->bvh.depth);
     Json row = {{"spec", spec}, {"triangles", scene.triangle_count()}, {"sources", scene.sources.size()}};
 
     // BVH builds.
@@ -196,7 +199,7 @@ int run(const CommandLine& cli, const Options& options) {
       settings.threads = build_threads;
       std::vector<double> build_ms;
       for (std::uint32_t r = 0; r < options.build_runs; ++r)
-        build_ms.push_back(sp::build_bvh(scene.vertices, scene.triangle_layers, {}, settings).build_ms);
+        build_ms.push_back(sp::build_bvh(vertices, scene.triangle_layers, {}, settings).build_ms);
       const unsigned used = build_threads ? build_threads : std::max(1u, std::thread::hardware_concurrency());
       builds.push_back({{"builder", "soundpaint"}, {"threads", used}, {"ms", sp::median(build_ms)}});
       std::printf("  BVH build  soundpaint (binned SAH, %u thread%s) %*.2f ms\n", used, used == 1 ? "" : "s",
@@ -211,8 +214,8 @@ int run(const CommandLine& cli, const Options& options) {
     }
     const Caster soundpaint = [&](const CastRay* r, std::size_t count, CastHit* out) {
       for (std::size_t i = 0; i < count; ++i) {
-        const sp::HitInfo hit = sp::closest_hit(world.bvh, r[i].origin, r[i].dir, r[i].tmin, r[i].tmax);
-        out[i] = hit.triangle == SP_INVALID ? CastHit{} : CastHit{hit.t, world.bvh.triangles[hit.triangle].scene_index};
+        const sp::HitInfo hit = sp::closest_hit(world.geometry->bvh, r[i].origin, r[i].dir, r[i].tmin, r[i].tmax);
+        out[i] = hit.triangle == SP_INVALID ? CastHit{} : CastHit{hit.t, world.geometry->bvh.triangles[hit.triangle].scene_index};
       }
     };
     std::vector<CastHit> reference;
@@ -231,7 +234,7 @@ int run(const CommandLine& cli, const Options& options) {
       std::vector<double> ms;
       std::unique_ptr<spbench::EmbreeScene> tree;
       for (std::uint32_t r = 0; r < options.build_runs; ++r) {
-        tree = std::make_unique<spbench::EmbreeScene>(scene.vertices, config_e.quality, config_e.threads);
+        tree = std::make_unique<spbench::EmbreeScene>(vertices, config_e.quality, config_e.threads);
         ms.push_back(tree->build_ms());
       }
       const std::string name = std::string("embree ") + spbench::quality_name(config_e.quality);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "sp_types.h"
 
 namespace {
 

@@ -1,4 +1,5 @@
 #include "embree_cast.h"
+#include "sp_types.h"
 
 #include <stdexcept>
 
@@ -7,6 +8,8 @@
 
 #include <chrono>
 #include <numeric>
+
+#include <glm/glm.hpp>
 #endif
 
 namespace spbench {

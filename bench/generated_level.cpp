@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 namespace spbench {
 namespace {
 
@@ -190,7 +192,9 @@ sp::Scene generate_level(std::size_t target_triangles) {
   for (const Box& box : boxes)
     for (const auto& axes : kFaceAxes) emit_faces(scene, box, axes, h);
   sp::Camera camera;
-  camera.world[3] = glm::vec4(kCell + 5.0f, 1.7f, kCell + 5.0f, 1.0f);
+  camera.world[3][0] = kCell + 5.0f;
+  camera.world[3][1] = 1.7f;
+  camera.world[3][2] = kCell + 5.0f;
   scene.camera = camera;
   return scene;
 }

@@ -15,6 +15,7 @@
 
 #include "sim/indicator_ring.h"
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 
 namespace {
 

@@ -1,7 +1,6 @@
 # `cmake --install BUILD --prefix P` (SPEC 5): included by the top-level
 # CMakeLists.txt when SOUNDPAINT_INSTALL is on. Installs
-#   P/include/soundpaint/      the public headers, plus the shaders/shared
-#                              headers they include (found below, not listed)
+#   P/include/soundpaint/      the public headers
 #   P/<libdir>/libsoundpaint.a (or .so with BUILD_SHARED_LIBS)
 #   P/bin/soundpaint           the command line
 #   P/<libdir>/cmake/soundpaint/   find_package(soundpaint CONFIG): targets
@@ -13,26 +12,11 @@ set(SOUNDPAINT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/soundpaint
     CACHE STRING "Where the CMake package goes, relative to the install prefix")
 mark_as_advanced(SOUNDPAINT_INSTALL_CMAKEDIR)
 
-# Public headers: include/soundpaint/*.h, and the closure of the headers from
-# shaders/shared/ that they include with quotes ("sp_types.h"). Those are
-# installed next to them, in include/soundpaint/, where a quoted include
-# finds them first; so nothing but P/include is needed on the include path.
+# Public headers: include/soundpaint/*.h. They include only each other, the
+# standard library and (the interop headers) Vulkan: the consumer test
+# consumer_installed_headers checks it.
 file(GLOB soundpaint_public_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/include/soundpaint/*.h)
-set(soundpaint_shared_headers)
-set(pending ${soundpaint_public_headers})
-while(pending)
-  list(POP_FRONT pending header)
-  file(STRINGS ${header} quoted_includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"[^\"/]+\"")
-  foreach(line ${quoted_includes})
-    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"/]+)\".*" "\\1" name "${line}")
-    set(shared ${PROJECT_SOURCE_DIR}/shaders/shared/${name})
-    if(EXISTS ${shared} AND NOT shared IN_LIST soundpaint_shared_headers)
-      list(APPEND soundpaint_shared_headers ${shared})
-      list(APPEND pending ${shared})
-    endif()
-  endforeach()
-endwhile()
-install(FILES ${soundpaint_public_headers} ${soundpaint_shared_headers}
+install(FILES ${soundpaint_public_headers}
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/soundpaint COMPONENT soundpaint_development)
 
 install(TARGETS soundpaint soundpaint_c_api EXPORT soundpaintTargets
@@ -77,12 +61,12 @@ set(cxx_runtime ${SOUNDPAINT_CXX_RUNTIME})
 list(TRANSFORM cxx_runtime PREPEND "-l")
 list(JOIN cxx_runtime " " cxx_runtime)
 if(BUILD_SHARED_LIBS)
-  set(SOUNDPAINT_PC_REQUIRES "vulkan glm")
+  set(SOUNDPAINT_PC_REQUIRES "vulkan")
   set(SOUNDPAINT_PC_REQUIRES_PRIVATE "tinygltf stb")
   set(SOUNDPAINT_PC_LIBS "-L\${libdir} -lsoundpaint")
   set(SOUNDPAINT_PC_LIBS_PRIVATE "-pthread ${cxx_runtime}")
 else()
-  set(SOUNDPAINT_PC_REQUIRES "vulkan glm tinygltf stb")
+  set(SOUNDPAINT_PC_REQUIRES "vulkan tinygltf stb")
   set(SOUNDPAINT_PC_REQUIRES_PRIVATE "")
   set(SOUNDPAINT_PC_LIBS "-L\${libdir} -lsoundpaint -pthread ${cxx_runtime}")
   set(SOUNDPAINT_PC_LIBS_PRIVATE "")

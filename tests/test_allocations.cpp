@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/scene.h"
 #include "soundpaint/simulation.h"
 #include "support/gltf_builder.h"

@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/glm_interop.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
@@ -75,12 +77,12 @@ TEST_P(BackendPhysics, SlabCostsAttenuationTimesThicknessOverCosine) {
   for (const Indicator& ind : out.indicators) {
     if (ind.kind != SP_INDICATOR_EXIT) continue;
     ++exits;
-    float cos_theta = ind.position.x / glm::length(ind.position);
+    float cos_theta = sp::to_glm(ind.position).x / glm::length(sp::to_glm(ind.position));
     EXPECT_NEAR(ind.position.x, 1.2f, 1e-5f);
     EXPECT_GE(0.2f / cos_theta, 0.0f);
     EXPECT_LE(0.2f / cos_theta, 0.5f + 1e-4f) << "a path longer than W_max must be absorbed";
     EXPECT_NEAR(ind.energy, 1.0f - 1.5f * 0.2f / cos_theta, 2e-4f);
-    EXPECT_NEAR(ind.path_length, glm::length(ind.position), 2e-4f);
+    EXPECT_NEAR(ind.path_length, glm::length(sp::to_glm(ind.position)), 2e-4f);
   }
   EXPECT_GT(exits, 50);
   const auto& wood = out.stats.layers[0];

@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "soundpaint/bvh.h"
+#include <glm/glm.hpp>
+
+#include "bvh/bvh.h"
 #include "sp_traverse.h"
 #include "support/bvh_scenes.h"
 

@@ -19,7 +19,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "soundpaint/result.h"
 #include "support/bvh_scenes.h"
 

@@ -24,6 +24,7 @@
 #include "capi/display_c.h"
 #include "draw/render_target.h"
 #include "soundpaint/soundpaint_vulkan.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/host_commands.h"
 #include "support/render_checks.h"

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "soundpaint/soundpaint.h"
+#include "sp_types.h"
 #include "support/gltf_builder.h"
 #include "support/test_directory.h"
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "soundpaint/soundpaint_vulkan.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/host_commands.h"
 #include "vk/handle.h"

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/glm.hpp>
+
 #include "bvh/mesh_topology.h"
+#include "core/glm_interop.h"
 #include "soundpaint/check.h"
 #include "support/scene_builder.h"
 
@@ -63,7 +66,7 @@ TEST(Check, ClosedRoomHasNoFindings) {
 TEST(Check, BoxWithoutItsBottomHasFourOpenEdges) {
   Scene scene;
   add_box_faces(scene, {0, 0, 0}, {1, 1, 1}, "wood", test::kAllFaces & ~test::kMinusY);
-  const MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, 1);
+  const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, 1);
   EXPECT_EQ(topology.open_edges, 4u);
   EXPECT_EQ(topology.inconsistent_edges, 0u);
   const CheckReport report = check(scene, [] {
@@ -84,13 +87,13 @@ TEST(Check, TJunctionsOfATriangulatedSolidAreClosed) {
   add_box_faces(scene, {0, 0, 0}, {1, 1, 1}, "brick", test::kAllFaces & ~test::kPlusX);
   add_quad(scene, {1, 0, 0}, {1, 1, 0}, {1, 1, 0.5f}, {1, 0, 0.5f}, "brick");
   add_quad(scene, {1, 0, 0.5f}, {1, 1, 0.5f}, {1, 1, 1}, {1, 0, 1}, "brick");
-  const MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, 1);
+  const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, 1);
   EXPECT_EQ(topology.open_edges, 0u);
   EXPECT_EQ(topology.inconsistent_edges, 0u);
   // Without the split face the same box is open on that side: 4 edges.
   Scene open;
   add_box_faces(open, {0, 0, 0}, {1, 1, 1}, "brick", test::kAllFaces & ~test::kPlusX);
-  EXPECT_EQ(analyse_mesh(open.vertices, open.triangle_layers, 1).open_edges, 4u);
+  EXPECT_EQ(analyse_mesh(to_glm(open.vertices), open.triangle_layers, 1).open_edges, 4u);
 }
 
 TEST(Check, FlippedFaceHasFourInconsistentEdges) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "io/output.h"
+#include "sp_types.h"
 #include "support/run_command.h"
 #include "support/vulkan_environment.h"
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "sp_types.h"
 #include "support/run_command.h"
 
 namespace {

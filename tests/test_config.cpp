@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/config.h"
 
 namespace {

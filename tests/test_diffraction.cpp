@@ -15,8 +15,10 @@
 #include <gtest/gtest.h>
 
 #include "bvh/diffraction_edges.h"
+#include "core/glm_interop.h"
 #include "sim/cpu_tracer.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/config.h"
 #include "sp_diffraction.h"
 #include "sp_ray_model.h"
@@ -38,7 +40,7 @@ int exposed_count(const std::vector<shader::TriangleEdges>& table) {
   return n;
 }
 
-Bvh bvh_of(const Scene& scene) { return build_bvh(scene.vertices, scene.triangle_layers); }
+Bvh bvh_of(const Scene& scene) { return build_bvh(to_glm(scene.vertices), scene.triangle_layers); }
 
 // ------------------------------------------------------------- the edges
 
@@ -135,7 +137,7 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   Bvh bvh = bvh_of(scene);
   bvh.edges = find_exposed_edges(bvh);
   const int before = exposed_count(bvh.edges);
-  std::vector<glm::vec3> moved = scene.vertices;
+  std::vector<glm::vec3> moved = to_glm(scene.vertices);
   for (std::size_t k = 36; k < moved.size(); ++k) moved[k].y += 0.5f;
   const BvhChanges changes = refit_bvh(bvh, moved).value();
   EXPECT_FALSE(changes.edges.empty());
@@ -145,7 +147,7 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   ASSERT_EQ(fresh.size(), bvh.edges.size());
   EXPECT_EQ(std::memcmp(fresh.data(), bvh.edges.data(), fresh.size() * sizeof(fresh[0])), 0);
   // And back down: buried again.
-  ASSERT_TRUE(refit_bvh(bvh, scene.vertices).ok());
+  ASSERT_TRUE(refit_bvh(bvh, to_glm(scene.vertices)).ok());
   EXPECT_EQ(exposed_count(bvh.edges), before);
 }
 
@@ -192,13 +194,13 @@ struct HalfPlane {
   }
 
   // Ray `index` falling straight down onto the screen a metres from its edge.
-  std::vector<Indicator> drop(float a, std::uint32_t index, TraceCounters& counters) const {
-    TraceContext context{&world.bvh, layers, {&source, 1}, make_sim_params(config, 0)};
+  std::vector<shader::Indicator> drop(float a, std::uint32_t index, TraceCounters& counters) const {
+    TraceContext context{&world.geometry->bvh, layers, {&source, 1}, make_sim_params(config, 0)};
     shader::RayState ray = shader::sp_emit_ray(source, 0, index, config.seed, 0);
     ray.origin = glm::vec3(-a, 0.0f, 1.0f);
     ray.dir = glm::vec3(0.0f, 0.0f, -1.0f);
     counters.layers.assign(world.layer_names.size(), {});
-    std::vector<Indicator> out;
+    std::vector<shader::Indicator> out;
     trace_ray(context, ray, out, counters);
     return out;
   }
@@ -238,7 +240,7 @@ TEST(DiffractionHalfPlane, ShadowHitsFollowTheAngleLawAndOnlyWithDiffractionOn) 
       ASSERT_GE(out.size(), 1u);
       EXPECT_EQ(out[0].diffractions, 0u);  // the screen near its edge gets its cue first
       for (std::size_t k = 1; k < out.size(); ++k) {
-        const Indicator& hit = out[k];
+        const shader::Indicator& hit = out[k];
         ASSERT_EQ(hit.diffractions, 1u);
         EXPECT_NEAR(hit.position.z, -1.0f, 1e-4f);
         EXPECT_NEAR(hit.dir.y, 0.0f, 1e-6f);  // Keller's cone: nothing along the edge before, nothing after
@@ -276,7 +278,7 @@ TEST(DiffractionHalfPlane, ATurnedRayCarriesAtMostGainTimesItsEnergy) {
       EXPECT_FLOAT_EQ(out[k].energy, 0.5f);
       EXPECT_FLOAT_EQ(out[k].size, 0.5f * scene.config.indicator_size);
       const glm::vec3 edge(0.0f, 0.0f, 0.0f);
-      const float expected = 1.0f + a + glm::distance(edge, out[k].position);
+      const float expected = 1.0f + a + glm::distance(edge, sp::to_glm(out[k].position));
       EXPECT_NEAR(out[k].path_length, expected, 2e-3f);
     }
   }
@@ -405,7 +407,7 @@ TEST_P(DiffractionParity, CpuAndGpuAgreeIndicatorForIndicator) {
     const Indicator& g = lists[1][k];
     const bool same = c.kind == g.kind && c.ray_index == g.ray_index && c.iteration == g.iteration &&
                       c.diffractions == g.diffractions && c.bounces == g.bounces &&
-                      std::abs(c.energy - g.energy) <= 1e-5f && glm::distance(c.position, g.position) <= 1e-5f;
+                      std::abs(c.energy - g.energy) <= 1e-5f && glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f;
     differing += !same;
     turned += c.diffractions > 0u;
   }
@@ -450,7 +452,7 @@ TEST_F(DiffractionMovingParts, BothBackendsFollowTheEdgesAMovedPartUncovers) {
     const Indicator& c = lists[0][k];
     const Indicator& g = lists[1][k];
     differing += !(c.kind == g.kind && c.ray_index == g.ray_index && c.diffractions == g.diffractions &&
-                   glm::distance(c.position, g.position) <= 1e-5f);
+                   glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f);
   }
   EXPECT_EQ(differing, 0u) << "of " << lists[0].size();
 }

@@ -22,6 +22,7 @@
 #include "draw/host_indicators.h"
 #include "draw/renderer.h"
 #include "sim/indicator_ring.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/render_checks.h"
 #include "support/scene_builder.h"
@@ -47,8 +48,8 @@ SourceDesc source(glm::vec3 position, glm::vec3 colour, const std::string& categ
 // A spot as the simulation would leave it: a direct hit at step 0, at full
 // intensity, on a surface with normal `normal`, in its source's colour
 // (source 0 is red and source 1 blue in every scene here).
-Indicator spot(glm::vec3 position, glm::vec3 normal, glm::vec3 direction, float size, std::uint32_t source = 0) {
-  Indicator ind{};
+shader::Indicator spot(glm::vec3 position, glm::vec3 normal, glm::vec3 direction, float size, std::uint32_t source = 0) {
+  shader::Indicator ind{};
   ind.position = position;
   ind.normal = normal;
   ind.dir = glm::normalize(direction);
@@ -109,7 +110,7 @@ class Display : public test::GpuTest {
  protected:
   // Draws `indicators` of `world` through the host-side ring, as the CPU
   // backend's are, seen after `steps_run` steps.
-  draw::RgbaImage draw(const World& world, const draw::ViewCamera& camera, const std::vector<Indicator>& indicators,
+  draw::RgbaImage draw(const World& world, const draw::ViewCamera& camera, const std::vector<shader::Indicator>& indicators,
                        std::uint64_t steps_run = kFadedIn) {
     vk::Context& context = *test::GpuEnvironment::context();
     draw::RenderSettings settings;
@@ -347,11 +348,11 @@ TEST_F(Display, MaxPerCategoryDrawsTheMostEnergeticFirst) {
   const draw::ViewCamera view = camera(capped, {0, 8, 0.01f}, {0, 0, 0}, 60.0f);
   // Energies in a scrambled order: the four strongest are 0.9, 0.8, 0.7, 0.6.
   const float energies[10] = {0.3f, 0.9f, 0.1f, 0.6f, 0.5f, 0.8f, 0.2f, 0.7f, 0.4f, 0.35f};
-  std::vector<Indicator> spots;
+  std::vector<shader::Indicator> spots;
   const std::vector<glm::vec3> cells = grid(10);
   for (std::size_t k = 0; k < 10; ++k) {
     // size = indicator_size (1) * E / E0; spots are never under 16 px.
-    Indicator ind = spot(cells[k], {0, 1, 0}, {0, -1, 0}, energies[k]);
+    shader::Indicator ind = spot(cells[k], {0, 1, 0}, {0, -1, 0}, energies[k]);
     ind.energy = energies[k];
     spots.push_back(ind);
   }
@@ -371,7 +372,7 @@ TEST_F(Display, SizeScaleGrowsSpotsAndOpacitySettingsApply) {
   const World normal_world = floor_world();
   const World big_world = floor_world(big);
   const draw::ViewCamera view = camera(normal_world, {0, 6, 0.01f}, {0, 0, 0});
-  const std::vector<Indicator> one = {spot({0, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f)};
+  const std::vector<shader::Indicator> one = {spot({0, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f)};
   const std::size_t normal = blob(draw(normal_world, view, one), is_red).pixels;
   const std::size_t doubled = blob(draw(big_world, view, one), is_red).pixels;
   ASSERT_GT(normal, 100u);
@@ -380,7 +381,7 @@ TEST_F(Display, SizeScaleGrowsSpotsAndOpacitySettingsApply) {
   // A spot near the end of its lifetime is faint; min_opacity keeps it
   // visible, opacity_scale 0 hides every spot that min_opacity does not.
   Config config;
-  Indicator old = one[0];
+  shader::Indicator old = one[0];
   const auto steps_old = static_cast<std::uint64_t>(0.95 * config.indicator_lifetime / config.dt) + 1;  // born at step 0
   auto reddest = [](const draw::RgbaImage& image) {
     int best = 0;
@@ -413,7 +414,7 @@ TEST_F(Display, ArrowsPointToHeardSourcesOutOfView) {
   arrows_config.listener_position = glm::vec3(0, 1.6f, 0);
   const World world = make_world(scene, arrows_config).value();
   const draw::ViewCamera view = camera(world, {0, 1.6f, 0}, {0, 1.0f, -5.0f}, 60.0f);
-  const std::vector<Indicator> spots = {spot({0, 0, 8}, {0, 1, 0}, {0, -1, 0}, 0.5f, 0),
+  const std::vector<shader::Indicator> spots = {spot({0, 0, 8}, {0, 1, 0}, {0, -1, 0}, 0.5f, 0),
                                         spot({0, 0, -6}, {0, 1, 0}, {0, -1, 0}, 0.5f, 1)};
   const draw::RgbaImage image = draw(world, view, spots);
   // The red arrow (with the category's shape) sits at the bottom edge,
@@ -498,7 +499,7 @@ TEST_F(Display, ShortLifetimesNeverFlashFasterThanThreeTimesASecond) {
   config.indicator_lifetime = 0.05f;  // 3 steps at 60 Hz
   const World world = make_world(scene, config).value();
   const draw::ViewCamera view = camera(world, {0, 6, 0.01f}, {0, 0, 0});
-  const std::vector<Indicator> one = {spot({0, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f)};
+  const std::vector<shader::Indicator> one = {spot({0, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f)};
   // Born at step 0; seen at 0.1 s and 0.25 s, both past the 0.05 s asked.
   const std::size_t early = blob(draw(world, view, one, 7), is_red).pixels;
   auto reddish = [](Rgb c) { return c.r > c.g + 25 && c.r > c.b + 25; };  // a faded red over grey

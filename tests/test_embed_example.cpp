@@ -18,6 +18,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/glm_interop.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
 #include "sp_shapes.h"
 #include "support/render_checks.h"
@@ -62,7 +64,7 @@ struct Camera {
 };
 
 Camera scene_camera(const Scene& scene) {
-  const glm::mat4 view = glm::inverse(scene.camera->world);
+  const glm::mat4 view = glm::inverse(sp::to_glm(scene.camera->world));
   glm::mat4 projection = glm::perspectiveRH_ZO(scene.camera->yfov, static_cast<float>(kWidth) / kHeight,
                                                scene.camera->znear, scene.camera->zfar);
   projection[1][1] *= -1.0f;
@@ -77,14 +79,14 @@ struct Projected {
 };
 
 Projected project(const Camera& camera, const Indicator& indicator) {
-  const glm::vec4 clip = camera.view_projection * glm::vec4(indicator.position, 1.0f);
+  const glm::vec4 clip = camera.view_projection * glm::vec4(sp::to_glm(indicator.position), 1.0f);
   Projected p;
   p.in_front = clip.w > 0.1f;
   if (!p.in_front) return p;
   p.x = (clip.x / clip.w * 0.5f + 0.5f) * kWidth;
   p.y = (clip.y / clip.w * 0.5f + 0.5f) * kHeight;
-  const glm::vec3 to_eye = glm::normalize(camera.eye - indicator.position);
-  const float facing = std::max(0.0f, glm::dot(glm::normalize(indicator.normal), to_eye));
+  const glm::vec3 to_eye = glm::normalize(camera.eye - sp::to_glm(indicator.position));
+  const float facing = std::max(0.0f, glm::dot(glm::normalize(sp::to_glm(indicator.normal)), to_eye));
   p.radius = 0.5f * indicator.size * camera.pixels_per_unit_at_depth_1 / clip.w;
   p.narrow = p.radius * facing;
   return p;
@@ -163,16 +165,16 @@ TEST(EmbedExample, GpuBackendDrawsTheIndicatorsTheSimulationPredicts) {
   std::size_t checked = 0, shown = 0;
   for (const Indicator& indicator : live) {
     const Projected p = project(camera, indicator);
-    if (!p.in_front || glm::dot(indicator.normal, camera.eye - indicator.position) <= 0.0f) continue;
+    if (!p.in_front || glm::dot(sp::to_glm(indicator.normal), camera.eye - sp::to_glm(indicator.position)) <= 0.0f) continue;
     mark_disc(explained, p);
 
     // Checked: clearly visible ones -- opaque, a few pixels wide, inside
     // the image and in plain sight of the eye.
     if (opacity_at(indicator, current_step, world.config) <= 0.5f || p.narrow < 1.5f || !in_image(p.x, p.y, 2.0f))
       continue;
-    const float distance = glm::length(indicator.position - camera.eye);
-    const glm::vec3 direction = (indicator.position - camera.eye) / distance;
-    if (closest_hit(world.bvh, camera.eye, direction, 0.0f, distance - 0.05f).triangle != SP_INVALID) continue;
+    const float distance = glm::length(sp::to_glm(indicator.position) - camera.eye);
+    const glm::vec3 direction = (sp::to_glm(indicator.position) - camera.eye) / distance;
+    if (closest_hit(world.geometry->bvh, camera.eye, direction, 0.0f, distance - 0.05f).triangle != SP_INVALID) continue;
     ++checked;
     const glm::vec3 colour = world.source_colors[indicator.source_id];
     if (shows_colour(*picture, p.x, p.y, colour)) {

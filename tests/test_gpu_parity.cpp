@@ -10,6 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/glm.hpp>
+
+#include "core/glm_interop.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
@@ -41,7 +45,7 @@ class GpuParity : public test::GpuTest {
       const Indicator& g = *it->second;
       bool same = c.kind == g.kind && c.source_id == g.source_id && c.bounces == g.bounces &&
                   c.penetrations == g.penetrations && std::abs(c.energy - g.energy) <= 1e-4f &&
-                  glm::length(c.position - g.position) <= 1e-4f && std::abs(c.size - g.size) <= 1e-4f &&
+                  glm::length(sp::to_glm(c.position) - sp::to_glm(g.position)) <= 1e-4f && std::abs(c.size - g.size) <= 1e-4f &&
                   c.intensity == g.intensity;
       identical += same;
     }

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "core/glm_interop.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
@@ -116,7 +117,7 @@ TEST_P(LiveScene, AddedSourceEmitsWithItsIdAndColourFromItsPosition) {
     EXPECT_EQ(ind.color, green.color);
     // A first hit lies straight from the source: its path is the distance.
     if (ind.bounces == 0 && ind.penetrations == 0) {
-      EXPECT_NEAR(ind.path_length, glm::distance(ind.position, green.position), 1e-4f);
+      EXPECT_NEAR(ind.path_length, glm::distance(sp::to_glm(ind.position), sp::to_glm(green.position)), 1e-4f);
     }
   }
 }
@@ -131,7 +132,7 @@ TEST_P(LiveScene, MovedSourceCastsFromItsNewPosition) {
   for (const Indicator& ind : run(*sim, 1)) {
     if (ind.bounces != 0) continue;
     first_hits += 1;
-    EXPECT_NEAR(ind.path_length, glm::distance(ind.position, moved), 1e-4f);
+    EXPECT_NEAR(ind.path_length, glm::distance(sp::to_glm(ind.position), moved), 1e-4f);
   }
   EXPECT_GT(first_hits, 100u);
 }

@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/glm_interop.h"
 #include "sp_traverse.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
@@ -291,7 +292,7 @@ TEST(Matter, RayThroughAnEdgeSharedByTwoTrianglesCrossesTheSurfaceOnce) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, 0.0f, 2.0f);
   std::vector<float> near_face;
   for (std::size_t tri = 8; tri < 10; ++tri) {  // after -z, +z, -y, +y (add_box_faces' order): the -x face
-    const glm::vec3* v = &f.scene.vertices[3 * tri];
+    const std::vector<glm::vec3> v = to_glm(std::span(f.scene.vertices).subspan(3 * tri, 3));
     near_face.push_back(shader::sp_intersect_triangle(q, v[0], v[1], v[2]));
   }
   ASSERT_EQ(near_face[0], near_face[1]) << "the ray does not meet the shared edge";
@@ -396,7 +397,7 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
     if (ind.kind == SP_INDICATOR_HIT) hits[{ind.step, ind.ray_index, ind.iteration}] = &ind;
   int exits = 0;
   for (const Indicator& ind : out.indicators) {
-    const glm::vec3 off_surface = ind.position + ind.normal * 1e-3f;
+    const glm::vec3 off_surface = sp::to_glm(ind.position) + sp::to_glm(ind.normal) * 1e-3f;
     EXPECT_LT(matter_at(f.solids, off_surface), 0.0f) << "indicator faces matter at " << ind.position.x << ", "
                                                       << ind.position.y << ", " << ind.position.z;
     if (ind.kind != SP_INDICATOR_EXIT) continue;
@@ -414,7 +415,7 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
     const double expected = double(from.energy) - matter_loss(f.solids, from.position, ind.position);
     EXPECT_NEAR(ind.energy, expected, 2e-3) << "exit at " << ind.position.x << ", " << ind.position.y << ", "
                                             << ind.position.z;
-    EXPECT_NEAR(ind.path_length - from.path_length, glm::distance(from.position, ind.position), 1e-4);
+    EXPECT_NEAR(ind.path_length - from.path_length, glm::distance(sp::to_glm(from.position), sp::to_glm(ind.position)), 1e-4);
   }
   EXPECT_GT(exits, 50);
   // The open mesh: rays that penetrate the floor, or the trim's top down
@@ -456,7 +457,7 @@ TEST_P(MatterParity, CpuAndGpuAgreeIndicatorForIndicator) {
     const Indicator& g = lists[1][k];
     const bool same = c.kind == g.kind && c.ray_index == g.ray_index && c.iteration == g.iteration &&
                       c.penetrations == g.penetrations && std::abs(c.energy - g.energy) <= 1e-5f &&
-                      glm::distance(c.position, g.position) <= 1e-5f;
+                      glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f;
     differing += !same;
   }
   EXPECT_EQ(differing, 0u) << "of " << lists[0].size();

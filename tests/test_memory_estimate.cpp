@@ -5,8 +5,11 @@
 #include <chrono>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "sim/memory_estimate.h"
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 #include "support/scene_builder.h"
 
 namespace {

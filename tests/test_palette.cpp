@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "display/categories.h"
 #include "display/color_vision.h"
 #include "display/contrast.h"

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "sp_types.h"
 #include "support/scene_builder.h"
 #include "support/single_ray.h"
 

@@ -13,6 +13,8 @@
 #include <glm/mat4x4.hpp>
 
 #include "draw/renderer.h"
+#include "sim/world_geometry.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/render_checks.h"
 #include "support/scene_builder.h"
@@ -218,10 +220,11 @@ TEST_F(Render, CpuAndGpuBackendsDrawTheSamePicture) {
 TEST(ViewCamera, FollowsTheSceneCameraTheListenerAndTheOverrides) {
   Scene scene = open_yard();
   Camera camera;
-  camera.world = glm::mat4(1.0f);
-  camera.world[0] = glm::vec4(0, 0, -1, 0);  // a quarter turn about +Y: local -Z looks down world -X
-  camera.world[2] = glm::vec4(1, 0, 0, 0);
-  camera.world[3] = glm::vec4(3, 2, 1, 1);
+  glm::mat4 pose(1.0f);
+  pose[0] = glm::vec4(0, 0, -1, 0);  // a quarter turn about +Y: local -Z looks down world -X
+  pose[2] = glm::vec4(1, 0, 0, 0);
+  pose[3] = glm::vec4(3, 2, 1, 1);
+  camera.world = pose;
   scene.camera = camera;
   Config config = yard_config(10);
   config.listener_position.reset();
@@ -246,7 +249,7 @@ TEST(ViewCamera, FollowsTheSceneCameraTheListenerAndTheOverrides) {
   EXPECT_NEAR(glm::dot(view.forward, glm::vec3(-1, 0, 0)), 1.0f, 1e-6f);
 
   view = draw::make_view_camera(std::nullopt, world, {}, 320, 240);  // no camera: the scene's centre
-  const glm::vec3 centre_of_bounds = 0.5f * (world.bvh.nodes[0].bmin + world.bvh.nodes[0].bmax);
+  const glm::vec3 centre_of_bounds = 0.5f * (world.geometry->bvh.nodes[0].bmin + world.geometry->bvh.nodes[0].bmax);
   EXPECT_NEAR(glm::dot(view.forward, glm::normalize(centre_of_bounds - view.eye)), 1.0f, 1e-5f);
 
   draw::CameraOverrides overrides;

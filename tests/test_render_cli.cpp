@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "sp_types.h"
 #include "support/render_checks.h"
 #include "support/run_command.h"
 #include "support/vulkan_environment.h"

@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "core/glm_interop.h"
 #include "soundpaint/scene.h"
+#include "sp_types.h"
 #include "support/gltf_builder.h"
 #include "support/test_directory.h"
 
@@ -233,8 +235,8 @@ TEST_F(SceneFile, ReadsSourcesAndFirstCameraInTraversalOrder) {
   // so the camera's +Z axis is Ry(90) * (0,0,1) = (1,0,0).
   ASSERT_TRUE(scene.camera.has_value());
   expect_vec3(scene.camera->position(), {1, 3, 3}, "camera position");
-  expect_vec3(glm::vec3(scene.camera->world[2]), {1, 0, 0}, "camera z axis");
-  expect_vec3(glm::vec3(scene.camera->world[0]), {0, 0, -1}, "camera x axis");
+  expect_vec3(glm::vec3(sp::to_glm(scene.camera->world)[2]), {1, 0, 0}, "camera z axis");
+  expect_vec3(glm::vec3(sp::to_glm(scene.camera->world)[0]), {0, 0, -1}, "camera x axis");
   EXPECT_FLOAT_EQ(scene.camera->yfov, 1.0f);
   EXPECT_FLOAT_EQ(scene.camera->znear, 0.1f);
   EXPECT_FLOAT_EQ(scene.camera->zfar, 50.0f);
@@ -513,8 +515,8 @@ TEST(BundledScenes, PlaceSourcesAndListenersAsGenerated) {
   EXPECT_GT(two->sources[0].position.x, 0.05f);  // room B, beyond the divider at |x| <= 0.05
   ASSERT_TRUE(two->camera.has_value());
   EXPECT_LT(two->camera->position().x, -0.05f);  // room A
-  EXPECT_GT(-two->camera->world[2].x, 0.5f);     // looking towards +x, the divider
-  EXPECT_NEAR(glm::length(glm::vec3(two->camera->world[0])), 1.0f, 1e-5f);
+  EXPECT_GT(-two->camera->world[2][0], 0.5f);     // looking towards +x, the divider
+  EXPECT_NEAR(glm::length(glm::vec3(sp::to_glm(two->camera->world)[0])), 1.0f, 1e-5f);
 
   // The paper's benchmark: 15 sources, each sounding 0.1 s every 0.25 s.
   sp::Result<sp::Scene> level = sp::load_scene(fs::path(SP_SCENES_DIR) / "level.gltf");

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/scene.h"
 #include "support/gltf_builder.h"
 #include "support/test_directory.h"

@@ -31,6 +31,8 @@
 // directory and library, a binary PGM otherwise.
 #if __has_include(<stb_image_write.h>)
 #include <stb_image_write.h>
+
+#include <glm/glm.hpp>
 #define SP_CONTACT_SHEET_PNG 1
 #endif
 

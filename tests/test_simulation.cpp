@@ -175,7 +175,7 @@ TEST(Random, DecisionsAreUniformAndKeyedByAllInputs) {
 
 TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
   IndicatorRing ring(4);
-  std::vector<Indicator> batch(6);
+  std::vector<shader::Indicator> batch(6);
   for (std::uint32_t k = 0; k < 6; ++k) {
     batch[k].step = k;
     batch[k].ray_index = k;
@@ -196,8 +196,8 @@ TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
   EXPECT_EQ(kept[0].ray_index, 4u);
 }
 
-Indicator spot(std::uint32_t ray, float size, bool direct) {
-  Indicator ind{};
+shader::Indicator spot(std::uint32_t ray, float size, bool direct) {
+  shader::Indicator ind{};
   ind.kind = SP_INDICATOR_HIT;
   ind.ray_index = ray;
   ind.size = size;
@@ -210,11 +210,11 @@ TEST(Simulation, RingAdmitsDirectSoundFirstThenTheMostEnergetic) {
   // 2, sound through walls 1, reflections 1; nothing went through a wall,
   // so its share goes to reflections: both direct hits, however faint,
   // then the two strongest reflections.
-  std::vector<Indicator> step = {spot(0, 0.9f, false), spot(1, 0.05f, true), spot(2, 0.2f, false),
+  std::vector<shader::Indicator> step = {spot(0, 0.9f, false), spot(1, 0.05f, true), spot(2, 0.2f, false),
                                  spot(3, 0.7f, false),  spot(4, 0.1f, true),  spot(5, 0.3f, false)};
   auto admitted = admit(step, 4, 1.0f);
   std::set<std::uint32_t> rays;
-  for (const Indicator& ind : admitted) rays.insert(ind.ray_index);
+  for (const shader::Indicator& ind : admitted) rays.insert(ind.ray_index);
   EXPECT_EQ(rays, (std::set<std::uint32_t>{0, 1, 3, 4}));
   EXPECT_EQ(admit(step, 10, 1.0f).size(), step.size()) << "under the quota, all are admitted";
 }
@@ -222,10 +222,10 @@ TEST(Simulation, RingAdmitsDirectSoundFirstThenTheMostEnergetic) {
 TEST(Simulation, RingKeepsAShareForSoundThroughWalls) {
   // Ten loud direct hits and three faint exits: a quota of 6 gives each
   // class 2; the exits are shown although every direct hit is louder.
-  std::vector<Indicator> step;
+  std::vector<shader::Indicator> step;
   for (std::uint32_t r = 0; r < 10; ++r) step.push_back(spot(r, 0.9f - 0.01f * static_cast<float>(r), true));
   for (std::uint32_t r = 10; r < 13; ++r) {
-    Indicator exit = spot(r, 0.05f * static_cast<float>(r - 9), false);
+    shader::Indicator exit = spot(r, 0.05f * static_cast<float>(r - 9), false);
     exit.kind = SP_INDICATOR_EXIT;
     exit.bounces = 0;
     exit.penetrations = 1;
@@ -234,14 +234,14 @@ TEST(Simulation, RingKeepsAShareForSoundThroughWalls) {
   step.push_back(spot(20, 0.5f, false));
   step.push_back(spot(21, 0.4f, false));
   std::set<std::uint32_t> rays;
-  for (const Indicator& ind : admit(step, 6, 1.0f)) rays.insert(ind.ray_index);
+  for (const shader::Indicator& ind : admit(step, 6, 1.0f)) rays.insert(ind.ray_index);
   EXPECT_EQ(rays, (std::set<std::uint32_t>{0, 1, 11, 12, 20, 21}));
 }
 
 TEST(Simulation, RingAdmitsAShareOfSpotsOfEqualWorthRatherThanNone) {
   // 200 spots in one admission bin against a quota of 20: the tie-break
   // bins pick some of them, never more than the quota, the same each time.
-  std::vector<Indicator> step;
+  std::vector<shader::Indicator> step;
   for (std::uint32_t r = 0; r < 200; ++r) step.push_back(spot(r, 0.5f, true));
   auto admitted = admit(step, 20, 1.0f);
   EXPECT_GE(admitted.size(), 10u);

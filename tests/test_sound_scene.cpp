@@ -7,7 +7,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "sim/sound_scene_backend.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
 #include "support/scene_builder.h"
 
@@ -35,7 +37,7 @@ World room_world(std::size_t sources, bool movable_box = false) {
 
 std::vector<std::uint32_t> planned_ids(SoundScene& scene, std::uint64_t step) {
   StepPlan plan;
-  scene.plan(step, plan);
+  detail::SoundSceneBackend::plan(scene, step, plan);
   std::vector<std::uint32_t> ids;
   for (const auto& s : plan.sources) ids.push_back(s.source_id);
   return ids;
@@ -60,7 +62,7 @@ TEST(SoundScene, RemovedSourcesAreNotPlannedAndSplitNoBudget) {
   SoundScene scene(room_world(3));
   ASSERT_TRUE(scene.remove_source(1).ok());
   StepPlan plan;
-  scene.plan(0, plan);
+  detail::SoundSceneBackend::plan(scene, 0, plan);
   ASSERT_EQ(plan.sources.size(), 2u);
   EXPECT_EQ(plan.sources[0].ray_count, 45u);  // 90 rays over the two left
   EXPECT_EQ(plan.sources[1].source_id, 2u);
@@ -126,18 +128,18 @@ TEST(SoundScene, MisuseIsAnErrorNamingTheProblem) {
 
 TEST(SoundScene, InstanceTransformsMoveOnlyTheirTrianglesAtTheNextUpdate) {
   SoundScene scene(room_world(0, true));
-  const float door_top_before = scene.world().bvh.nodes[0].bmax.y;
+  const float door_top_before = scene.world().geometry->bvh.nodes[0].bmax.y;
   ASSERT_TRUE(scene.set_instance_transform(0, glm::translate(glm::mat4(1.0f), {0, 5, 0})).ok());
   EXPECT_TRUE(scene.geometry_pending());
-  EXPECT_EQ(scene.world().bvh.nodes[0].bmax.y, door_top_before);  // nothing moves before the step
-  const BvhChanges changes = scene.update_geometry();
+  EXPECT_EQ(scene.world().geometry->bvh.nodes[0].bmax.y, door_top_before);  // nothing moves before the step
+  const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene);
   EXPECT_FALSE(changes.triangles.empty());
   // The door's top, 2 m, moved to 7 m; the room's own top is 3.3 m.
-  EXPECT_FLOAT_EQ(scene.world().bvh.nodes[0].bmax.y, 7.0f);
+  EXPECT_FLOAT_EQ(scene.world().geometry->bvh.nodes[0].bmax.y, 7.0f);
   std::size_t moved = 0;
-  for (const BvhTriangle& t : scene.world().bvh.triangles) moved += t.v0.y >= 5.0f ? 1 : 0;
+  for (const BvhTriangle& t : scene.world().geometry->bvh.triangles) moved += t.v0.y >= 5.0f ? 1 : 0;
   EXPECT_EQ(moved, 12u);
-  EXPECT_TRUE(scene.update_geometry().triangles.empty());  // nothing pending
+  EXPECT_TRUE(detail::SoundSceneBackend::update_geometry(scene).triangles.empty());  // nothing pending
 }
 
 TEST(SoundScene, SceneInstanceTablesAreChecked) {

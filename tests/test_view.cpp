@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "sp_types.h"
 #include "support/render_checks.h"
 #include "support/run_command.h"
 #include "support/vulkan_environment.h"

@@ -11,9 +11,12 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <glm/glm.hpp>
+
 #include "draw/render_target.h"
 #include "draw/view_camera.h"
 #include "soundpaint/visualizer.h"
+#include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/host_commands.h"
 #include "support/render_checks.h"

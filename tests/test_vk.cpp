@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "sp_types.h"
 #include "support/vulkan_environment.h"
 #include "test_fill.comp.spv.h"
 #include "vk/barriers.h"

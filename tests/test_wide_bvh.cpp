@@ -17,8 +17,10 @@
 #include <random>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "bvh/wide_bvh.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "sp_traverse.h"
 #include "support/bvh_scenes.h"
 

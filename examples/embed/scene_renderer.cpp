@@ -31,21 +31,23 @@ ShaderModule make_module(VkDevice device, const std::uint32_t* code, std::size_t
 
 }  // namespace
 
-SceneRenderer::SceneRenderer(const HostContext& host, std::span<const glm::vec3> triangles, VkFormat color_format,
+SceneRenderer::SceneRenderer(const HostContext& host, std::span<const sp::Vec3> triangles, VkFormat color_format,
                              VkFormat depth_format) {
   upload(host, triangles);
   create_pipeline(host.device(), color_format, depth_format);
 }
 
-void SceneRenderer::upload(const HostContext& host, std::span<const glm::vec3> triangles) {
+void SceneRenderer::upload(const HostContext& host, std::span<const sp::Vec3> triangles) {
   std::vector<Vertex> vertices;
   vertices.reserve(triangles.size());
   for (std::size_t i = 0; i + 2 < triangles.size(); i += 3) {
-    const glm::vec3 n = glm::cross(triangles[i + 1] - triangles[i], triangles[i + 2] - triangles[i]);
+    // soundpaint's Vec3 converts to the host's own vector type (glm here).
+    const glm::vec3 a = triangles[i], b = triangles[i + 1], c = triangles[i + 2];
+    const glm::vec3 n = glm::cross(b - a, c - a);
     const float length = glm::length(n);
     // Degenerate triangles cover no pixel; any unit normal will do.
     const glm::vec3 normal = length > 0.0f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
-    for (std::size_t k = 0; k < 3; ++k) vertices.push_back({triangles[i + k], normal});
+    for (const glm::vec3& corner : {a, b, c}) vertices.push_back({corner, normal});
   }
   if (vertices.empty()) fail("the scene has no triangle to draw");
   vertex_count_ = static_cast<std::uint32_t>(vertices.size());

@@ -6,6 +6,7 @@
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <soundpaint/math.h>
 #include <vulkan/vulkan.h>
 
 #include "host_vulkan.h"
@@ -13,8 +14,9 @@
 
 class SceneRenderer {
  public:
-  // `triangles`: 3 world-space vertices per triangle, uploaded once.
-  SceneRenderer(const HostContext& host, std::span<const glm::vec3> triangles, VkFormat color_format,
+  // `triangles`: 3 world-space vertices per triangle (a soundpaint Scene's),
+  // uploaded once.
+  SceneRenderer(const HostContext& host, std::span<const sp::Vec3> triangles, VkFormat color_format,
                 VkFormat depth_format);
 
   // Inside the rendering begun by OffscreenTarget::begin (viewport and
@@ -22,7 +24,7 @@ class SceneRenderer {
   void draw(VkCommandBuffer cmd, const glm::mat4& view_projection) const;
 
  private:
-  void upload(const HostContext& host, std::span<const glm::vec3> triangles);
+  void upload(const HostContext& host, std::span<const sp::Vec3> triangles);
   void create_pipeline(VkDevice device, VkFormat color_format, VkFormat depth_format);
 
   std::uint32_t vertex_count_ = 0;

@@ -11,9 +11,9 @@
 #include <string_view>
 #include <vector>
 
-#include <glm/vec3.hpp>
 
 #include "soundpaint/display.h"
+#include "soundpaint/math.h"
 #include "soundpaint/result.h"
 
 namespace sp {
@@ -33,10 +33,10 @@ struct LayerProperties {
 // and fmod(t - phase, interval) < duration; the defaults make it play always.
 struct SourceDesc {
   std::string name;                    // node name for scene sources, "" otherwise
-  glm::vec3 position{0.0f};            // metres, world space
+  Vec3 position;                       // metres, world space
   // Linear RGB, each in [0, 1]; empty: its category's colour in the display
   // palette (docs/model.md#indicators, include/soundpaint/display.h).
-  std::optional<glm::vec3> color;
+  std::optional<Vec3> color;
   std::string category = "sound";      // free text, e.g. "footsteps"
   float max_distance = 30.0f;          // D_max == R_max, metres, >= 0
   float loudness = 1.0f;               // E0, initial ray energy, >= 0
@@ -86,7 +86,7 @@ struct Config {
   double dt = 1.0 / 60.0;                    // seconds per step, > 0
   std::uint32_t seed = 1;                    // random stream seed
   std::map<std::string, LayerProperties> layers;  // overrides of presets, by layer name
-  std::optional<glm::vec3> listener_position;     // overrides the scene's camera
+  std::optional<Vec3> listener_position;          // overrides the scene's camera
   std::vector<SourceDesc> sources;                // added after the scene's sources
   DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
   DiffractionSettings diffraction;                // sound bending round edges (docs/model.md#diffraction)

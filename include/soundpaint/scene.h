@@ -9,10 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/mat4x4.hpp>
-#include <glm/vec3.hpp>
-
 #include "soundpaint/config.h"
+#include "soundpaint/math.h"
 #include "soundpaint/result.h"
 
 namespace sp {
@@ -20,12 +18,12 @@ namespace sp {
 // A perspective camera placed by a node's world transform; looks down -Z of
 // that transform, +Y up (glTF convention).
 struct Camera {
-  glm::mat4 world{1.0f};     // node's world matrix (rotation + translation)
+  Mat4 world;                // node's world matrix (rotation + translation)
   float yfov = 0.8f;         // vertical field of view, radians
   float znear = 0.05f;       // metres
   float zfar = 1000.0f;      // metres
   float aspect_ratio = 0.0f; // 0: take it from the image
-  glm::vec3 position() const { return glm::vec3(world[3]); }
+  Vec3 position() const { return world.translation(); }
 };
 
 // Scene::triangle_instances value of a triangle that never moves.
@@ -33,7 +31,7 @@ inline constexpr std::uint32_t kStaticInstance = 0xFFFFFFFFu;
 
 struct Scene {
   std::filesystem::path path;               // where it was loaded from, if from a file
-  std::vector<glm::vec3> vertices;          // 3 per triangle, world space, metres
+  std::vector<Vec3> vertices;               // 3 per triangle, world space, metres
   std::vector<std::uint32_t> triangle_layers;  // per triangle, index into layer_names
   std::vector<std::string> layer_names;     // distinct layer names, in first-use order
   std::vector<SourceDesc> sources;          // in node order (depth-first over the default scene)

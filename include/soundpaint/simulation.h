@@ -8,27 +8,85 @@
 #include <string>
 #include <vector>
 
-#include <glm/mat4x4.hpp>
-#include <glm/vec3.hpp>
-
-#include "soundpaint/bvh.h"
 #include "soundpaint/config.h"
+#include "soundpaint/math.h"
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
-#include "sp_types.h"
 
 namespace sp {
 
-// An indicator (docs/model.md#indicators). Category is
-// sources[source_id].category.
-using Indicator = shader::Indicator;
+// Indicator::kind values.
+inline constexpr std::uint32_t kIndicatorHit = 0;   // a ray struck a surface
+inline constexpr std::uint32_t kIndicatorExit = 1;  // a ray left matter it had crossed
+
+// An indicator (docs/model.md#indicators): a cue painted where a ray met a
+// surface. Category is sources[source_id].category. 96 bytes, laid out as
+// the GPU's ring buffer holds them.
+struct Indicator {
+  Vec3 position;
+  float energy = 0.0f;
+  Vec3 normal;                // facing the side the ray came from (hit) or leaves to (exit)
+  float size = 0.0f;          // metres: indicator_size * E / E0
+  Vec3 color;                 // linear RGB
+  float intensity = 0.0f;
+  Vec3 dir;                   // the ray's direction of travel: incoming (hit), outgoing (exit)
+  float path_length = 0.0f;   // metres from the source
+  std::uint32_t kind = kIndicatorHit;
+  std::uint32_t source_id = 0;
+  std::uint32_t bounces = 0;
+  std::uint32_t penetrations = 0;
+  std::uint32_t diffractions = 0;
+  std::uint32_t step = 0;
+  std::uint32_t ray_index = 0;
+  std::uint32_t iteration = 0;
+};
+
+// How make_world builds its BVH (binned SAH).
+inline constexpr std::uint32_t kBvhMaxDepth = 32;  // the traversal stack's depth
+struct BvhBuildSettings {
+  std::uint32_t bins = 16;            // SAH bins per axis and split
+  std::uint32_t max_leaf_size = 4;    // leaves never hold more unless the depth cap forces it
+  float traversal_cost = 1.0f;        // SAH cost of visiting a node, relative to one triangle test
+  std::uint32_t max_depth = kBvhMaxDepth;  // levels including the root; <= kBvhMaxDepth
+  // Threads the build may use: 0 means std::thread::hardware_concurrency(),
+  // 1 builds on the calling thread only. Subtrees near the root are built
+  // concurrently and spliced in a fixed order, so the result (nodes,
+  // triangles, depth) is byte-identical for every value.
+  unsigned threads = 0;
+};
+
+struct BvhChanges;  // src/bvh/bvh.h
+namespace detail {
+struct WorldGeometry;        // src/sim/world_geometry.h
+struct SoundSceneBackend;    // src/sim/sound_scene_backend.h
+}  // namespace detail
+
+// The geometry a backend traces (the BVH, the rest pose of moving parts and
+// what rebuilding needs), opaque outside the library. Copied with its World
+// (deeply: copies never share a refit).
+class WorldGeometryHandle {
+ public:
+  WorldGeometryHandle();
+  ~WorldGeometryHandle();
+  WorldGeometryHandle(const WorldGeometryHandle& other);
+  WorldGeometryHandle& operator=(const WorldGeometryHandle& other);
+  WorldGeometryHandle(WorldGeometryHandle&& other) noexcept;
+  WorldGeometryHandle& operator=(WorldGeometryHandle&& other) noexcept;
+
+  detail::WorldGeometry& operator*() { return *geometry_; }
+  const detail::WorldGeometry& operator*() const { return *geometry_; }
+  detail::WorldGeometry* operator->() { return geometry_.get(); }
+  const detail::WorldGeometry* operator->() const { return geometry_.get(); }
+
+ private:
+  std::unique_ptr<detail::WorldGeometry> geometry_;
+};
 
 // Everything a backend needs, resolved once: geometry, per-layer acoustics,
 // sources (scene's then config's) and the listener. A running simulation
 // keeps its World in a SoundScene, which changes sources and moving parts.
 struct World {
   Config config;
-  Bvh bvh;
   std::vector<std::string> layer_names;
   std::vector<LayerProperties> layer_properties;  // per layer id
   std::vector<std::uint32_t> layer_triangle_counts;
@@ -38,22 +96,21 @@ struct World {
   // colour its indicators carry: its own, else its category's palette
   // colour. Kept up to date by make_world and SoundScene.
   std::vector<std::uint32_t> source_categories;
-  std::vector<glm::vec3> source_colors;
+  std::vector<Vec3> source_colors;
   std::vector<std::string> category_names;
   // Per source id: false once removed (SoundScene::remove_source); the slot
   // keeps its last description and a later add_source may reuse it.
   std::vector<bool> source_active;
-  glm::vec3 listener{0.0f};
+  Vec3 listener;
 
   // Moving parts (Scene::instance_names); empty when the scene has none.
   // Kept so that an instance transform can re-place its triangles.
   std::vector<std::string> instance_names;
-  std::vector<glm::mat4> instance_transforms;      // per instance, applied to the rest pose
-  std::vector<glm::vec3> rest_vertices;            // scene's vertices, 3 per triangle
-  std::vector<std::uint32_t> triangle_instances;   // per triangle, or kStaticInstance
-  std::vector<std::uint32_t> triangle_layers;      // per triangle (scene order), for rebuilds
-  std::vector<std::uint32_t> triangle_solids;      // per triangle (scene order), for rebuilds
-  double build_sah_cost = 0.0;  // the BVH's absolute SAH cost after its last build (set by SoundScene)
+  std::vector<Mat4> instance_transforms;  // per instance, applied to the rest pose
+
+  // The triangles and their BVH, opaque.
+  WorldGeometryHandle geometry;
+  std::size_t triangle_count() const;
 };
 
 // Resolves scene + config. Errors: no listener (neither a camera in the scene
@@ -108,11 +165,11 @@ class SoundScene {
   explicit SoundScene(World world);
 
   const World& world() const { return world_; }
-  glm::vec3 listener() const { return world_.listener; }
+  Vec3 listener() const { return world_.listener; }
   std::uint32_t source_capacity() const { return capacity_; }
   bool has_source(std::uint32_t id) const { return id < world_.sources.size() && world_.source_active[id]; }
 
-  Result<bool> set_listener(glm::vec3 position);
+  Result<bool> set_listener(Vec3 position);
 
   // Adds a source and returns its id: the lowest free slot (ids of removed
   // sources are reused). LimitExceeded when source_capacity() are active.
@@ -120,7 +177,7 @@ class SoundScene {
   // Replaces everything about a source: position, colour, category, range
   // (max_distance), loudness and emission pattern.
   Result<bool> update_source(std::uint32_t id, const SourceDesc& source);
-  Result<bool> move_source(std::uint32_t id, glm::vec3 position);
+  Result<bool> move_source(std::uint32_t id, Vec3 position);
   // The source stops emitting; its indicators already drawn fade as usual.
   Result<bool> remove_source(std::uint32_t id);
 
@@ -142,11 +199,17 @@ class SoundScene {
   // Places moving part `instance` (Scene::instance_names) at `transform`
   // applied to its rest pose (the vertices the scene gave): a door swings by
   // a rotation about its hinge. The BVH is refitted before the next step.
-  Result<bool> set_instance_transform(std::uint32_t instance, const glm::mat4& transform);
+  Result<bool> set_instance_transform(std::uint32_t instance, const Mat4& transform);
   std::uint32_t instance_count() const { return static_cast<std::uint32_t>(world_.instance_names.size()); }
 
-  // --- Used by the backends; a host never calls these (on a visualizer's
-  // scene, update_geometry would race with the CPU backend's worker) ---
+  // True while a moved part waits for the next step to refit the BVH.
+  bool geometry_pending() const { return geometry_pending_; }
+
+ private:
+  // Used by the backends through detail::SoundSceneBackend; a host never
+  // calls these (on a visualizer's scene, update_geometry would race with
+  // the CPU backend's worker).
+  friend struct detail::SoundSceneBackend;
   // The plan of step `step`: playing sources and their rays. Ends one-shot
   // sources whose sound is over. Steps are planned in increasing order.
   void plan(std::uint64_t step, StepPlan& out);
@@ -154,9 +217,7 @@ class SoundScene {
   // when refits have doubled its SAH cost. Returns what changed (nothing
   // when nothing moved). Must not run while a step reads the BVH.
   BvhChanges update_geometry();
-  bool geometry_pending() const { return geometry_pending_; }
 
- private:
   double next_step_time() const { return static_cast<double>(next_step_) * world_.config.dt; }
   Result<bool> check_id(const char* what, std::uint32_t id) const;
   Result<std::uint32_t> add_slot(const char* what, const SourceDesc& source);
@@ -223,7 +284,7 @@ class Simulator {
   virtual std::uint64_t steps_run() const = 0;
 
   // Shorthands for scene().set_listener / scene().play.
-  Result<bool> set_listener(glm::vec3 position) { return scene().set_listener(position); }
+  Result<bool> set_listener(Vec3 position) { return scene().set_listener(position); }
   Result<bool> play(std::uint32_t source_id, double duration) { return scene().play(source_id, duration); }
 
   // The indicators created by the last step, in canonical order

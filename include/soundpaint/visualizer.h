@@ -9,7 +9,6 @@
 #include <memory>
 #include <span>
 
-#include <glm/mat4x4.hpp>
 #include <vulkan/vulkan.h>
 
 #include "soundpaint/simulation.h"
@@ -147,12 +146,12 @@ class Visualizer {
   // given (then sets both to it). Binds its own pipeline, descriptor set
   // and push constants: rebind yours afterwards. view and projection as
   // the host's own draws use them (Vulkan clip space).
-  virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+  virtual Result<bool> record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                    const VkRect2D* area = nullptr) = 0;
   // The same with the display's options: clipping to surfaces (scene depth)
   // and the viewport size the minimum spot size and off-screen arrows need.
   // Off-screen arrows are drawn when the display settings ask for them.
-  virtual Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+  virtual Result<bool> record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                    const DrawOptions& options) = 0;
 
   // How the indicators are drawn (docs/model.md#the-display; initially the

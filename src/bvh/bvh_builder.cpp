@@ -22,9 +22,11 @@
 #include <thread>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "bvh/bvh_geometry.h"
 #include "bvh/wide_bvh.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 
 namespace sp {
 namespace {

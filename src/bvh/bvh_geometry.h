@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 
 namespace sp {
 

@@ -2,8 +2,10 @@
 // wide_bvh.cpp, or without a wide tree the one shared with the GPU
 // (shaders/shared/sp_traverse.h); the brute-force path is the reference the
 // tests compare them against.
+#include <glm/glm.hpp>
+
 #include "bvh/wide_bvh.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "sp_traverse.h"
 
 namespace sp {

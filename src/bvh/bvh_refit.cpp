@@ -17,10 +17,12 @@
 #include <type_traits>
 #include <utility>
 
+#include <glm/glm.hpp>
+
 #include "bvh/bvh_geometry.h"
 #include "bvh/diffraction_edges.h"
 #include "bvh/wide_bvh.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "soundpaint/result.h"
 
 namespace sp {

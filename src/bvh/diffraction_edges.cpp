@@ -9,6 +9,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "bvh/mesh_topology.h"
+#include "sp_types.h"
 
 namespace sp {
 namespace {

@@ -5,7 +5,9 @@
 
 #include <vector>
 
-#include "soundpaint/bvh.h"
+#include <glm/glm.hpp>
+
+#include "bvh/bvh.h"
 
 namespace sp {
 

@@ -15,6 +15,8 @@
 
 #if defined(__SSE__)
 #include <xmmintrin.h>
+
+#include <glm/glm.hpp>
 #endif
 
 namespace sp {

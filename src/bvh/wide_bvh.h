@@ -37,8 +37,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "bvh/bvh_geometry.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 
 namespace sp {
 

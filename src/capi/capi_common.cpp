@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "capi/capi_internal.h"
+#include "sp_types.h"
 
 namespace sp::capi {
 namespace {

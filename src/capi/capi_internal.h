@@ -13,6 +13,7 @@
 #include "soundpaint/scene.h"
 #include "soundpaint/simulation.h"
 #include "soundpaint/soundpaint.h"
+#include "sp_types.h"
 
 struct sp_scene {
   sp::Scene scene;

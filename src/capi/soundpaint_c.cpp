@@ -9,7 +9,10 @@
 #include <string>
 #include <utility>
 
+#include <glm/glm.hpp>
+
 #include "capi/capi_internal.h"
+#include "sp_types.h"
 
 namespace {
 

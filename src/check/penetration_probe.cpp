@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/check.h"
 #include "soundpaint/simulation.h"
 

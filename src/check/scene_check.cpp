@@ -6,7 +6,10 @@
 #include <limits>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "bvh/mesh_topology.h"
+#include "core/glm_interop.h"
 #include "soundpaint/check.h"
 
 namespace sp {
@@ -121,7 +124,7 @@ Result<CheckReport> check_scene(const Scene& scene, const Config& config, const 
   return capture_errors([&]() -> CheckReport {
     CheckReport report;
     report.triangles = scene.triangle_count();
-    const MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, scene.layer_names.size());
+    const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, scene.layer_names.size());
     add_topology_findings(scene, topology, report.findings);
     add_scale_finding(scene, report.findings);
     report.probe = probe_penetration(scene, config, settings).value();

@@ -2,12 +2,16 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/glm.hpp>
+
 #include "bvh/diffraction_edges.h"
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 
 namespace sp::cli {
 namespace {
@@ -64,11 +68,11 @@ int run_info(const std::vector<std::string>& args) {
   std::printf("listener: ");
   print_vec(world.listener);
   std::printf(" (%s)\n", listener_from);
-  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.bvh.nodes.size(), world.bvh.depth,
-              world.bvh.build_ms);
+  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.geometry->bvh.nodes.size(), world.geometry->bvh.depth,
+              world.geometry->bvh.build_ms);
   // Each exposed edge is held by one triangle (a free boundary) or two.
   const auto started = std::chrono::steady_clock::now();
-  const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.bvh);
+  const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.geometry->bvh);
   const double edges_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   std::size_t boundary = 0, convex = 0;
   const float cos_max = std::cos(config.diffraction.edge_angle * 3.14159265f / 180.0f);

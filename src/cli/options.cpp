@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/result.h"
 
 namespace sp::cli {

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"

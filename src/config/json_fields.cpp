@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/result.h"
 
 namespace sp::json_fields {

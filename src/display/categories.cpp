@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 
+#include <glm/glm.hpp>
+
 #include "display/palette.h"
 
 namespace sp {

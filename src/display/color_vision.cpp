@@ -19,6 +19,8 @@
 #include <array>
 #include <cmath>
 
+#include <glm/glm.hpp>
+
 namespace sp {
 namespace {
 

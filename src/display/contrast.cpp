@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/glm.hpp>
+
 namespace sp {
 
 float relative_luminance(glm::vec3 linear_rgb) {

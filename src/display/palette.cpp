@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <glm/glm.hpp>
+
 #include "display/categories.h"
 
 namespace sp {

@@ -1,10 +1,14 @@
+#include "core/glm_interop.h"
 #include "draw/display_sources.h"
 
 #include <algorithm>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "display/categories.h"
 #include "soundpaint/result.h"
+#include "sp_types.h"
 
 namespace sp::draw {
 
@@ -18,7 +22,7 @@ std::vector<shader::DisplaySource> make_display_sources(const World& world, cons
     shader::DisplaySource& entry = table[id];
     entry.position = world.sources[id].position;
     entry.category = category;
-    entry.color = id < world.source_colors.size() ? world.source_colors[id] : glm::vec3(1.0f);
+    entry.color = id < world.source_colors.size() ? to_glm(world.source_colors[id]) : glm::vec3(1.0f);
     const std::string& name = category < categories.size() ? categories.name(category) : world.sources[id].category;
     entry.shape_flags = static_cast<std::uint32_t>(categories.shape_of(std::min(category, categories.size() - 1),
                                                                       settings.shapes));

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "soundpaint/result.h"
+#include "sp_types.h"
 #include "vk/objects.h"
 #include "vk/vk_check.h"
 

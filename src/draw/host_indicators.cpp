@@ -20,12 +20,12 @@ HostIndicators::HostIndicators(vk::Context& context)
   upload({});
 }
 
-void HostIndicators::upload(std::span<const Indicator> indicators) {
+void HostIndicators::upload(std::span<const shader::Indicator> indicators) {
   const auto count = static_cast<std::uint32_t>(indicators.size());
   if (count > capacity_ || !ring_) {
     std::uint32_t capacity = std::max(capacity_, kInitialCapacity);
     while (capacity < count) capacity = capacity > 0x7FFFFFFFu ? count : capacity * 2;
-    ring_ = vk::Buffer(context_, VkDeviceSize{capacity} * sizeof(Indicator), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    ring_ = vk::Buffer(context_, VkDeviceSize{capacity} * sizeof(shader::Indicator), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        vk::MemoryUsage::HostVisible, "host indicator ring");
     capacity_ = capacity;
   }

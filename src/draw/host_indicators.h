@@ -22,7 +22,7 @@ class HostIndicators {
   // draw's instance count. Not while a frame drawing them is pending.
   // Throws sp::Exception (LimitExceeded when the ring would exceed the
   // device's storage-buffer range).
-  void upload(std::span<const Indicator> indicators);
+  void upload(std::span<const shader::Indicator> indicators);
 
   // The ring and draw arguments, for IndicatorPass; valid until the next upload().
   gpu::IndicatorView view();

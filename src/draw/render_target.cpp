@@ -6,6 +6,7 @@
 #include "draw/image_barrier.h"
 #include "draw/rendering.h"
 #include "soundpaint/result.h"
+#include "sp_types.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
 #include "vk/objects.h"

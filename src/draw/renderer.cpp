@@ -2,8 +2,12 @@
 
 #include <algorithm>
 
+#include <glm/glm.hpp>
+
 #include "draw/display_sources.h"
 
+#include "sim/indicator_convert.h"
+#include "sp_types.h"
 #include "vk/barriers.h"
 #include "vk/objects.h"
 #include "vk/vk_check.h"
@@ -31,7 +35,7 @@ RgbaImage Renderer::render(const ViewCamera& camera, Simulator& simulator) {
     return render(camera, *view, world, simulator.steps_run());
   // Another backend (or another device): the indicators come through the host.
   if (!host_indicators_) host_indicators_.emplace(context_);
-  host_indicators_->upload(simulator.live_indicators().value());
+  host_indicators_->upload(to_shader(simulator.live_indicators().value()));
   return render(camera, host_indicators_->view(), world, simulator.steps_run());
 }
 

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <optional>
 
+#include <glm/glm.hpp>
+
 #include "draw/host_indicators.h"
 #include "draw/indicator_pass.h"
 #include "draw/render_target.h"

@@ -4,7 +4,11 @@
 #include <string>
 #include <utility>
 
+#include <glm/glm.hpp>
+
 #include "config/layer_names.h"
+#include "sim/world_geometry.h"
+#include "sp_types.h"
 
 namespace sp::draw {
 namespace {
@@ -88,8 +92,8 @@ SceneMesh build_scene_mesh(const World& world, bool markers) {
   std::vector<glm::vec3> tints(world.layer_names.size());
   for (std::size_t l = 0; l < tints.size(); ++l)
     tints[l] = layer_tint(world.layer_names[l], static_cast<std::uint32_t>(l));
-  mesh.triangles.reserve(world.bvh.triangles.size() + (markers ? world.sources.size() * 8 + 6 : 0));
-  for (const BvhTriangle& t : world.bvh.triangles) {
+  mesh.triangles.reserve(world.geometry->bvh.triangles.size() + (markers ? world.sources.size() * 8 + 6 : 0));
+  for (const BvhTriangle& t : world.geometry->bvh.triangles) {
     const glm::vec3 tint = t.layer < tints.size() ? tints[t.layer] : kPalette[0];
     add_triangle(mesh.triangles, t.v0, t.v1, t.v2, tint, SP_SHADE_LIT, t.layer);
   }

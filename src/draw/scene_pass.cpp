@@ -5,6 +5,7 @@
 #include "draw/draw_layout_checks.h"
 #include "scene.frag.spv.h"
 #include "scene.vert.spv.h"
+#include "sp_types.h"
 
 namespace sp::draw {
 namespace {

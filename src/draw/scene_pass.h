@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include <glm/glm.hpp>
+
 #include "draw/graphics_pipeline.h"
 #include "sp_draw_types.h"
 #include "draw/scene_mesh.h"

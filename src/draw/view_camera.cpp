@@ -1,9 +1,11 @@
+#include "core/glm_interop.h"
 #include "draw/view_camera.h"
 
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sim/world_geometry.h"
 #include "soundpaint/result.h"
 
 namespace sp::draw {
@@ -13,8 +15,8 @@ namespace {
 constexpr float kParallelCosine = 0.999f;
 
 glm::vec3 bounds_centre(const World& world) {
-  if (world.bvh.nodes.empty()) return glm::vec3(0.0f);
-  return 0.5f * (world.bvh.nodes[0].bmin + world.bvh.nodes[0].bmax);
+  if (world.geometry->bvh.nodes.empty()) return glm::vec3(0.0f);
+  return 0.5f * (world.geometry->bvh.nodes[0].bmin + world.geometry->bvh.nodes[0].bmax);
 }
 
 // An up vector orthogonal to `forward`: `preferred` if usable, else +Y, else -Z.
@@ -36,9 +38,9 @@ ViewCamera make_view_camera(const std::optional<Camera>& scene_camera, const Wor
   glm::vec3 preferred_up(0.0f, 1.0f, 0.0f);
   if (scene_camera) {
     camera.eye = world.config.listener_position ? *world.config.listener_position : scene_camera->position();
-    const glm::vec3 minus_z = -glm::vec3(scene_camera->world[2]);
+    const glm::vec3 minus_z = -glm::vec3(to_glm(scene_camera->world)[2]);
     camera.forward = glm::length(minus_z) > 0.0f ? glm::normalize(minus_z) : glm::vec3(0, 0, -1);
-    preferred_up = glm::vec3(scene_camera->world[1]);
+    preferred_up = glm::vec3(to_glm(scene_camera->world)[1]);
     camera.yfov = scene_camera->yfov;
     camera.znear = scene_camera->znear;
     camera.zfar = scene_camera->zfar;

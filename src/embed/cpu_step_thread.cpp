@@ -1,4 +1,5 @@
 #include "embed/cpu_step_thread.h"
+#include "sp_types.h"
 
 #include <chrono>
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/cpu_step_runner.h"
+#include "sp_types.h"
 
 namespace sp::embed {
 

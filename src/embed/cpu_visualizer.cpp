@@ -7,6 +7,8 @@
 #include "embed/cpu_step_thread.h"
 #include "embed/visualizers.h"
 #include "sim/indicator_ring.h"
+#include "sim/sound_scene_backend.h"
+#include "sim/world_geometry.h"
 #include "sp_draw_types.h"
 #include "vk/barriers.h"
 #include "vk/buffer.h"
@@ -119,11 +121,11 @@ class CpuVisualizer final : public VisualizerBase {
  private:
   void start_next_step() {
     // The worker is idle, so nothing reads the BVH while it is refitted.
-    (void)scene_.update_geometry();
+    (void)detail::SoundSceneBackend::update_geometry(scene_);
     StepPlan plan;
-    scene_.plan(next_step_, plan);
+    detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
-    worker_.start(scene_.world().bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
+    worker_.start(scene_.world().geometry->bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
@@ -131,13 +133,13 @@ class CpuVisualizer final : public VisualizerBase {
 
   // Appends a step's admitted indicators to the ring as IndicatorRing does
   // (the oldest overwritten), uploading only the slots that changed.
-  void upload_step(VkCommandBuffer cmd, std::span<const Indicator> indicators) {
+  void upload_step(VkCommandBuffer cmd, std::span<const shader::Indicator> indicators) {
     if (indicators.size() > capacity_) indicators = indicators.last(capacity_);
     std::size_t done = 0;
     while (done < indicators.size()) {
       const std::uint64_t slot = (pushed_ + done) % capacity_;
       const std::size_t run = std::min<std::size_t>(indicators.size() - done, capacity_ - slot);
-      vk::record_update(cmd, ring_, slot * sizeof(Indicator), &indicators[done], run * sizeof(Indicator));
+      vk::record_update(cmd, ring_, slot * sizeof(shader::Indicator), &indicators[done], run * sizeof(shader::Indicator));
       done += run;
     }
     pushed_ += indicators.size();

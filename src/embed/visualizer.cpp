@@ -5,6 +5,7 @@
 
 #include "embed/visualizers.h"
 #include "sim/memory_estimate.h"
+#include "sim/world_geometry.h"
 
 namespace sp {
 namespace {
@@ -62,7 +63,7 @@ Result<bool> check_target(VkPhysicalDevice device, const DrawTarget& target) {
 Result<std::unique_ptr<Visualizer>> Visualizer::create(const HostVulkan& host, const DrawTarget& target, World world,
                                                        const VisualizerSettings& settings) {
   if (settings.max_steps_per_frame == 0) return invalid("Visualizer: max_steps_per_frame must be >= 1");
-  if (world.bvh.nodes.empty()) return invalid("Visualizer: the world has no BVH (make it with make_world)");
+  if (world.geometry->bvh.nodes.empty()) return invalid("Visualizer: the world has no BVH (make it with make_world)");
   // The host's handles, checked (null, queue families, features) and used as
   // they are: no copy of them is made.
   Result<std::unique_ptr<vk::Context>> context = vk::Context::borrow(host);

@@ -6,6 +6,7 @@
 
 #include "core/finite.h"
 #include "draw/display_sources.h"
+#include "sp_types.h"
 
 namespace sp::embed {
 namespace {
@@ -28,7 +29,7 @@ Result<bool> VisualizerBase::check_simulation_args(VkCommandBuffer cmd, double d
   return true;
 }
 
-Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                          const VkRect2D* area) {
   DrawOptions options;
   options.area = area;
@@ -39,7 +40,7 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& v
   return record_draw(cmd, view, projection, options);
 }
 
-Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                          const DrawOptions& options) {
   if (cmd == VK_NULL_HANDLE) return invalid("record_draw: the command buffer is VK_NULL_HANDLE");
   if (!all_finite(view) || !all_finite(projection)) return invalid("record_draw: view and projection must be finite");

@@ -6,6 +6,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "draw/indicator_pass.h"
 #include "embed/frame_clock.h"
 #include "soundpaint/visualizer.h"
@@ -21,9 +23,9 @@ class VisualizerBase : public Visualizer {
 
   SoundScene& scene() override { return scene_; }
 
-  Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+  Result<bool> record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                            const VkRect2D* area) override;
-  Result<bool> record_draw(VkCommandBuffer cmd, const glm::mat4& view, const glm::mat4& projection,
+  Result<bool> record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                            const DrawOptions& options) override;
   Result<bool> set_display(const DisplaySettings& settings) override;
   const DisplaySettings& display() const override { return scene_.world().config.display; }

@@ -7,6 +7,7 @@
 #include "admit.comp.spv.h"
 #include "emit.comp.spv.h"
 #include "gpu/gpu_layout_checks.h"
+#include "sim/world_geometry.h"
 #include "sp_admission.h"
 #include "sp_draw_types.h"
 #include "prepare.comp.spv.h"
@@ -76,9 +77,9 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
 
   // Moving parts may force a rebuild, whose node count can differ; a binary
   // tree over n triangles never has more than 2n - 1 nodes.
-  const std::size_t triangle_count = world.bvh.triangles.size();
+  const std::size_t triangle_count = world.geometry->bvh.triangles.size();
   node_capacity = static_cast<std::uint32_t>(
-      world.instance_names.empty() ? world.bvh.nodes.size() : std::max(world.bvh.nodes.size(), 2 * triangle_count - 1));
+      world.instance_names.empty() ? world.geometry->bvh.nodes.size() : std::max(world.geometry->bvh.nodes.size(), 2 * triangle_count - 1));
   source_capacity = sources;
   const std::vector<shader::LayerAcoustics> layer_table = make_layer_table(world);
   nodes = vk::Buffer(context, bytes<shader::BvhNode>(node_capacity), kStorage | kTransfer, vk::MemoryUsage::DeviceLocal,
@@ -87,7 +88,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                          vk::MemoryUsage::DeviceLocal, "bvh triangles");
   // Diffraction off: one zero entry, which the kernels never read.
   const std::vector<shader::TriangleEdges> edge_table =
-      world.bvh.edges.empty() ? std::vector<shader::TriangleEdges>(1) : world.bvh.edges;
+      world.geometry->bvh.edges.empty() ? std::vector<shader::TriangleEdges>(1) : world.geometry->bvh.edges;
   edges = vk::Buffer(context, bytes<shader::TriangleEdges>(edge_table.size()), kStorage | kTransfer,
                      vk::MemoryUsage::DeviceLocal, "exposed edges");
   layers = vk::Buffer(context, bytes<shader::LayerAcoustics>(layer_table.size()), kStorage | kTransfer,
@@ -117,8 +118,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
   const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE, 0u);
   StagingPlan staging;
-  staging.add(nodes, world.bvh.nodes);
-  staging.add(triangles, world.bvh.triangles);
+  staging.add(nodes, world.geometry->bvh.nodes);
+  staging.add(triangles, world.geometry->bvh.triangles);
   staging.add(layers, layer_table);
   staging.add(edges, edge_table);
   staging.add(control, initial);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 #include "vk/context.h"
 
 namespace sp::gpu {

@@ -7,6 +7,9 @@
 
 #include "gpu/step_recorder.h"
 #include "sim/indicator_ring.h"
+#include "sim/sound_scene_backend.h"
+#include "sim/world_geometry.h"
+#include "sp_types.h"
 #include "vk/barriers.h"
 
 namespace sp::gpu {
@@ -51,7 +54,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   const bool first = !uploaded_;
   if (first) record_initial_uploads(cmd);
-  const BvhChanges changes = scene.update_geometry();
+  const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene);
   if (first && !(changes.nodes.empty() && changes.triangles.empty() && changes.edges.empty())) {
     // WAW: the rest pose's copy lands before the moved parts overwrite it.
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -66,7 +69,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
       vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     }
-    scene.plan(first_step + i, plan_);
+    detail::SoundSceneBackend::plan(scene, first_step + i, plan_);
     record_step_input(cmd, scene.world(), first_step + i);
     // RAW: uploads (the step input; BVH and initial contents on the first
     // step) are visible to the kernels.
@@ -102,7 +105,7 @@ void StepEngine::record_initial_uploads(VkCommandBuffer cmd) {
 }
 
 void StepEngine::record_geometry_changes(VkCommandBuffer cmd, const World& world, const BvhChanges& changes) {
-  const Bvh& bvh = world.bvh;
+  const Bvh& bvh = world.geometry->bvh;
   if (bvh.nodes.size() > resources_.node_capacity)
     throw std::logic_error("a BVH rebuild made " + std::to_string(bvh.nodes.size()) +
                                              " nodes, more than the buffer's " +

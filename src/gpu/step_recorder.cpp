@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "sp_types.h"
 #include "vk/barriers.h"
 
 namespace sp::gpu {

@@ -3,6 +3,7 @@
 
 #include "io/atomic_file.h"
 #include "io/output.h"
+#include "sp_types.h"
 
 namespace sp {
 namespace {
@@ -64,9 +65,9 @@ Result<bool> IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
     append_float(out, ind.path_length);
     append_float(out, ind.intensity);
     append_float(out, ind.size);
-    append_float(out, ind.color.r);
-    append_float(out, ind.color.g);
-    append_float(out, ind.color.b);
+    append_float(out, ind.color.x);
+    append_float(out, ind.color.y);
+    append_float(out, ind.color.z);
     append_float(out, ind.dir.x);
     append_float(out, ind.dir.y);
     append_float(out, ind.dir.z);

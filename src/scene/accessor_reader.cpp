@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "scene/scene_error.h"
 
 namespace sp::scene_detail {

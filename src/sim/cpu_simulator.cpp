@@ -5,10 +5,14 @@
 #include <optional>
 #include <string>
 
+#include "bvh/bvh.h"
 #include "sim/cpu_step_runner.h"
+#include "sim/indicator_convert.h"
 #include "sim/indicator_ring.h"
 #include "sim/memory_estimate.h"
+#include "sim/sound_scene_backend.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 
 namespace sp {
 namespace {
@@ -51,13 +55,13 @@ class CpuSimulator final : public Simulator {
 
   Result<std::vector<Indicator>> last_step_indicators() override {
     if (failure_) return *failure_;  // the failed step's list may be partial
-    return last_.indicators;
+    return to_public(last_.indicators);
   }
 
   Result<std::vector<Indicator>> live_indicators() override {
     if (steps_run_ == 0) return std::vector<Indicator>{};
     const Config& config = scene_.world().config;
-    return ring_.live(steps_run_ - 1, config.dt, config.indicator_lifetime);
+    return to_public(ring_.live(steps_run_ - 1, config.dt, config.indicator_lifetime));
   }
 
   Result<SimulationStats> stats() override { return totals_; }
@@ -66,9 +70,9 @@ class CpuSimulator final : public Simulator {
   Result<bool> run_step() {
     return capture_errors([&] {
       const std::uint64_t step = steps_run_;
-      (void)scene_.update_geometry();
-      scene_.plan(step, plan_);
-      runner_.run(scene_.world().bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_);
+      (void)detail::SoundSceneBackend::update_geometry(scene_);
+      detail::SoundSceneBackend::plan(scene_, step, plan_);
+      runner_.run(scene_.world().geometry->bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_);
       ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
@@ -99,7 +103,7 @@ class CpuSimulator final : public Simulator {
 
 Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSettings& settings) {
   return capture_errors([&]() -> std::unique_ptr<Simulator> {
-    if (world.bvh.nodes.empty()) throw Exception(ErrorCode::InvalidArgument, "create_cpu_simulator: the world has no BVH");
+    if (world.geometry->bvh.nodes.empty()) throw Exception(ErrorCode::InvalidArgument, "create_cpu_simulator: the world has no BVH");
     check_memory_budget(world.config, Backend::Cpu, settings.memory_budget_bytes);
     return std::make_unique<CpuSimulator>(std::move(world), settings);
   });

@@ -30,7 +30,7 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   }
 
   pool_.parallel_for(plan.total_rays, kChunkRays, [&](std::size_t first, std::size_t last, unsigned worker) {
-    std::vector<Indicator>& indicators = chunk_indicators_[first / kChunkRays];
+    std::vector<shader::Indicator>& indicators = chunk_indicators_[first / kChunkRays];
     std::size_t slot = 0;  // rays are grouped by source in ascending ray index
     for (std::size_t i = first; i < last; ++i) {
       while (i >= plan.sources[slot].first_ray + plan.sources[slot].ray_count) ++slot;
@@ -52,20 +52,20 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
 // Chunks hold rays in ascending order and each ray's indicators in ascending
 // iteration; a stable counting sort by iteration then yields (iteration, ray)
 // order, whatever thread ran which chunk.
-void CpuStepRunner::merge_in_canonical_order(std::size_t chunks, std::vector<Indicator>& out) const {
+void CpuStepRunner::merge_in_canonical_order(std::size_t chunks, std::vector<shader::Indicator>& out) const {
   std::size_t total = 0;
   std::uint32_t max_iteration = 0;
   for (std::size_t c = 0; c < chunks; ++c) {
     total += chunk_indicators_[c].size();
-    for (const Indicator& ind : chunk_indicators_[c]) max_iteration = std::max(max_iteration, ind.iteration);
+    for (const shader::Indicator& ind : chunk_indicators_[c]) max_iteration = std::max(max_iteration, ind.iteration);
   }
   std::vector<std::size_t> offsets(max_iteration + 2, 0);
   for (std::size_t c = 0; c < chunks; ++c)
-    for (const Indicator& ind : chunk_indicators_[c]) offsets[ind.iteration + 1] += 1;
+    for (const shader::Indicator& ind : chunk_indicators_[c]) offsets[ind.iteration + 1] += 1;
   for (std::size_t k = 1; k < offsets.size(); ++k) offsets[k] += offsets[k - 1];
   out.resize(total);
   for (std::size_t c = 0; c < chunks; ++c)
-    for (const Indicator& ind : chunk_indicators_[c]) out[offsets[ind.iteration]++] = ind;
+    for (const shader::Indicator& ind : chunk_indicators_[c]) out[offsets[ind.iteration]++] = ind;
 }
 
 }  // namespace sp

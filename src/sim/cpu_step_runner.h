@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "bvh/bvh.h"
 #include "sim/cpu_tracer.h"
 #include "sim/step_plan.h"
 #include "sim/thread_pool.h"
@@ -15,7 +16,7 @@
 namespace sp {
 
 struct CpuStepOutput {
-  std::vector<Indicator> indicators;  // canonical order: iteration, then ray index
+  std::vector<shader::Indicator> indicators;  // canonical order: iteration, then ray index
   TraceCounters counters;             // summed over the workers
 };
 
@@ -34,12 +35,12 @@ class CpuStepRunner {
            const shader::SimParams& params, CpuStepOutput& out);
 
  private:
-  void merge_in_canonical_order(std::size_t chunks, std::vector<Indicator>& out) const;
+  void merge_in_canonical_order(std::size_t chunks, std::vector<shader::Indicator>& out) const;
 
   ThreadPool pool_;
   std::size_t layer_count_;
   std::vector<TraceCounters> worker_counters_;
-  std::vector<std::vector<Indicator>> chunk_indicators_;
+  std::vector<std::vector<shader::Indicator>> chunk_indicators_;
 };
 
 }  // namespace sp

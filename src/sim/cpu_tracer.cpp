@@ -1,11 +1,11 @@
 #include "sim/cpu_tracer.h"
 
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "sp_ray_model.h"
 
 namespace sp {
 
-void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<Indicator>& indicators,
+void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<shader::Indicator>& indicators,
                TraceCounters& counters) {
   using namespace shader;
   const BvhTriangle* triangles = context.bvh->triangles.data();
@@ -28,8 +28,8 @@ void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<In
     }
     counters.casts += 1;
     const BvhTriangle& triangle = found.triangle != SP_INVALID ? triangles[found.triangle] : no_triangle;
-    Indicator indicator;
-    Indicator sheet_exit;
+    shader::Indicator indicator;
+    shader::Indicator sheet_exit;
     uint outcome;
     if (ray.state == SP_RAY_ACTIVE) {
       // The edge table is filled only while diffraction is on.

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "bvh/bvh.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -37,7 +38,7 @@ struct TraceContext {
 };
 
 // Traces `ray` (already emitted) to its end, appending its indicators.
-void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<Indicator>& indicators,
+void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<shader::Indicator>& indicators,
                TraceCounters& counters);
 
 }  // namespace sp

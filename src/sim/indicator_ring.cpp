@@ -20,45 +20,45 @@ float inverse_indicator_size(const Config& config) {
   return config.indicator_size > 0.0f ? 1.0f / config.indicator_size : 0.0f;
 }
 
-std::vector<Indicator> admit(std::span<const Indicator> step, std::uint32_t quota, float inverse_indicator_size) {
+std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota, float inverse_indicator_size) {
   if (step.size() <= quota) return {step.begin(), step.end()};
   // The GPU's admit.comp, phase by phase, over one buffer of the same shape.
   std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer{};
   std::uint32_t* histogram = buffer.data();
-  for (const Indicator& ind : step) histogram[shader::sp_admission_bin(ind, inverse_indicator_size)] += 1;
+  for (const shader::Indicator& ind : step) histogram[shader::sp_admission_bin(ind, inverse_indicator_size)] += 1;
   shader::sp_plan_admission(histogram, quota);
   std::fill_n(histogram, SP_ADMISSION_BINS, 0u);
-  for (const Indicator& ind : step)
+  for (const shader::Indicator& ind : step)
     if (shader::sp_in_tiebreak_bin(histogram, shader::sp_admission_bin(ind, inverse_indicator_size)))
       histogram[shader::sp_admission_tiebreak(ind)] += 1;
   shader::sp_plan_tiebreak(histogram, SP_ADMISSION_CLASSES);
-  std::vector<Indicator> admitted;
+  std::vector<shader::Indicator> admitted;
   admitted.reserve(quota);
-  for (const Indicator& ind : step)
+  for (const shader::Indicator& ind : step)
     if (shader::sp_admitted(histogram, shader::sp_admission_bin(ind, inverse_indicator_size),
                             shader::sp_admission_tiebreak(ind)))
       admitted.push_back(ind);
   return admitted;
 }
 
-void IndicatorRing::push(std::span<const Indicator> indicators) {
+void IndicatorRing::push(std::span<const shader::Indicator> indicators) {
   const std::uint64_t capacity = slots_.size();
   if (indicators.size() > capacity) {
     total_ += indicators.size() - capacity;
     indicators = indicators.last(capacity);
   }
-  for (const Indicator& indicator : indicators) {
+  for (const shader::Indicator& indicator : indicators) {
     slots_[total_ % capacity] = indicator;
     ++total_;
   }
 }
 
-std::vector<Indicator> IndicatorRing::live(std::uint64_t now, double dt, double lifetime) const {
+std::vector<shader::Indicator> IndicatorRing::live(std::uint64_t now, double dt, double lifetime) const {
   const std::uint64_t capacity = slots_.size();
   const std::uint64_t stored = std::min(total_, capacity);
-  std::vector<Indicator> result;
+  std::vector<shader::Indicator> result;
   for (std::uint64_t k = total_ - stored; k < total_; ++k) {
-    const Indicator& indicator = slots_[k % capacity];
+    const shader::Indicator& indicator = slots_[k % capacity];
     // The draw's age and rule (sp_ring.h): what is live is what is drawn.
     const float age = shader::sp_indicator_age(static_cast<std::uint32_t>(now), indicator.step, static_cast<float>(dt));
     if (age < static_cast<float>(lifetime)) result.push_back(indicator);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "soundpaint/simulation.h"
+#include "sp_types.h"
 
 namespace sp {
 
@@ -29,24 +30,24 @@ float inverse_indicator_size(const Config& config);
 // The indicators of `step` (in canonical order) that the ring admits, in
 // that order: those whose admission bin is at or above the threshold that
 // keeps them within `quota` (sp_admission_threshold).
-std::vector<Indicator> admit(std::span<const Indicator> step, std::uint32_t quota, float inverse_indicator_size);
+std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota, float inverse_indicator_size);
 
 class IndicatorRing {
  public:
   explicit IndicatorRing(std::uint32_t capacity) : slots_(capacity) {}
 
   // Appends in order; when more than capacity arrive, only the newest stay.
-  void push(std::span<const Indicator> indicators);
+  void push(std::span<const shader::Indicator> indicators);
 
   // Indicators still visible at step `now`: age (now - birth) * dt below
   // `lifetime`, oldest first.
-  std::vector<Indicator> live(std::uint64_t now, double dt, double lifetime) const;
+  std::vector<shader::Indicator> live(std::uint64_t now, double dt, double lifetime) const;
 
   std::uint64_t total_pushed() const { return total_; }
   std::uint32_t capacity() const { return static_cast<std::uint32_t>(slots_.size()); }
 
  private:
-  std::vector<Indicator> slots_;
+  std::vector<shader::Indicator> slots_;
   std::uint64_t total_ = 0;  // slot of the next push is total_ % capacity
 };
 

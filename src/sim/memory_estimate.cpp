@@ -1,4 +1,5 @@
 #include "sim/memory_estimate.h"
+#include "sp_types.h"
 
 #include <cstdio>
 #include <iterator>

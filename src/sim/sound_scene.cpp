@@ -4,12 +4,16 @@
 #include <cmath>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "bvh/diffraction_edges.h"
 #include "core/finite.h"
+#include "core/glm_interop.h"
 #include "display/display_checks.h"
 #include "sim/source_checks.h"
 #include "sim/source_display.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -48,7 +52,7 @@ SoundScene::SoundScene(World world) : world_(std::move(world)) {
   active_count_ = static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));
   play_windows_.resize(world_.sources.size());
   one_shot_.resize(world_.sources.size(), false);
-  if (!world_.instance_names.empty()) world_.build_sah_cost = absolute_sah_cost(world_.bvh);
+  if (!world_.instance_names.empty()) world_.geometry->build_sah_cost = absolute_sah_cost(world_.geometry->bvh);
 }
 
 Result<bool> SoundScene::check_id(const char* what, std::uint32_t id) const {
@@ -59,7 +63,7 @@ Result<bool> SoundScene::check_id(const char* what, std::uint32_t id) const {
   return true;
 }
 
-Result<bool> SoundScene::set_listener(glm::vec3 position) {
+Result<bool> SoundScene::set_listener(Vec3 position) {
   if (!all_finite(position)) return invalid("set_listener: position must be finite");
   world_.listener = position;
   return true;
@@ -124,7 +128,7 @@ Result<bool> SoundScene::set_display(const DisplaySettings& settings) {
   return true;
 }
 
-Result<bool> SoundScene::move_source(std::uint32_t id, glm::vec3 position) {
+Result<bool> SoundScene::move_source(std::uint32_t id, Vec3 position) {
   if (auto known = check_id("move_source", id); !known) return known;
   if (!all_finite(position)) return invalid("move_source: position must be finite");
   world_.sources[id].position = position;
@@ -161,7 +165,7 @@ Result<std::uint32_t> SoundScene::emit(const SourceDesc& source, double duration
   return id;
 }
 
-Result<bool> SoundScene::set_instance_transform(std::uint32_t instance, const glm::mat4& transform) {
+Result<bool> SoundScene::set_instance_transform(std::uint32_t instance, const Mat4& transform) {
   if (instance >= world_.instance_names.size())
     return invalid("set_instance_transform: unknown instance " + std::to_string(instance) + " (the scene has " +
                    std::to_string(world_.instance_names.size()) + " moving parts)");
@@ -184,25 +188,26 @@ void SoundScene::plan(std::uint64_t step, StepPlan& out) {
 BvhChanges SoundScene::update_geometry() {
   if (!geometry_pending_) return {};
   geometry_pending_ = false;
-  std::vector<glm::vec3> vertices(world_.rest_vertices.size());
-  for (std::size_t tri = 0; tri < world_.triangle_instances.size(); ++tri) {
-    const std::uint32_t instance = world_.triangle_instances[tri];
+  std::vector<glm::vec3> vertices(world_.geometry->rest_vertices.size());
+  for (std::size_t tri = 0; tri < world_.geometry->triangle_instances.size(); ++tri) {
+    const std::uint32_t instance = world_.geometry->triangle_instances[tri];
     for (std::size_t k = 3 * tri; k < 3 * tri + 3; ++k) {
       vertices[k] = instance == kStaticInstance
-                        ? world_.rest_vertices[k]
-                        : glm::vec3(world_.instance_transforms[instance] * glm::vec4(world_.rest_vertices[k], 1.0f));
+                        ? world_.geometry->rest_vertices[k]
+                        : glm::vec3(to_glm(world_.instance_transforms[instance]) *
+                                    glm::vec4(world_.geometry->rest_vertices[k], 1.0f));
     }
   }
-  BvhChanges changes = refit_bvh(world_.bvh, vertices).value();
-  if (absolute_sah_cost(world_.bvh) > kRebuildCostRatio * world_.build_sah_cost) {
-    const bool had_edges = !world_.bvh.edges.empty();
-    world_.bvh = build_bvh(vertices, world_.triangle_layers, world_.triangle_solids);
-    world_.build_sah_cost = absolute_sah_cost(world_.bvh);
-    changes.nodes = {{0, static_cast<std::uint32_t>(world_.bvh.nodes.size())}};
-    changes.triangles = {{0, static_cast<std::uint32_t>(world_.bvh.triangles.size())}};
+  BvhChanges changes = refit_bvh(world_.geometry->bvh, vertices).value();
+  if (absolute_sah_cost(world_.geometry->bvh) > kRebuildCostRatio * world_.geometry->build_sah_cost) {
+    const bool had_edges = !world_.geometry->bvh.edges.empty();
+    world_.geometry->bvh = build_bvh(vertices, world_.geometry->triangle_layers, world_.geometry->triangle_solids);
+    world_.geometry->build_sah_cost = absolute_sah_cost(world_.geometry->bvh);
+    changes.nodes = {{0, static_cast<std::uint32_t>(world_.geometry->bvh.nodes.size())}};
+    changes.triangles = {{0, static_cast<std::uint32_t>(world_.geometry->bvh.triangles.size())}};
     if (had_edges) {
-      world_.bvh.edges = find_exposed_edges(world_.bvh);
-      changes.edges = {{0, static_cast<std::uint32_t>(world_.bvh.edges.size())}};
+      world_.geometry->bvh.edges = find_exposed_edges(world_.geometry->bvh);
+      changes.edges = {{0, static_cast<std::uint32_t>(world_.geometry->bvh.edges.size())}};
     }
   }
   return changes;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <glm/glm.hpp>
+
 #include "display/categories.h"
 #include "display/palette.h"
 
@@ -35,7 +37,7 @@ void resolve_source_display(World& world, std::uint32_t id) {
   const SourceDesc& source = world.sources[id];
   const std::uint32_t category = category_index(world, source.category);
   world.source_categories[id] = category;
-  world.source_colors[id] = source.color ? *source.color : category_color(category, world.config.display.palette);
+  world.source_colors[id] = source.color ? *source.color : Vec3(category_color(category, world.config.display.palette));
 }
 
 }  // namespace sp

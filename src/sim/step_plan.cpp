@@ -1,4 +1,6 @@
+#include "core/glm_interop.h"
 #include "sim/step_plan.h"
+#include "sp_types.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,7 +57,7 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
     const PlayWindow& window = play_windows[id];
     bool playing = source_pattern_plays(source, t) || (t >= window.start && t < window.end);
     if (!playing) continue;
-    double d_ls = static_cast<double>(glm::distance(listener, source.position));
+    double d_ls = static_cast<double>(glm::distance(listener, to_glm(source.position)));
     if (d_ls > config.scan_radius || d_ls > source.max_distance) continue;
     double proximity = source.max_distance > 0.0f ? std::max(0.0, 1.0 - d_ls / source.max_distance) : 0.0;
 

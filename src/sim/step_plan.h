@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "bvh/bvh.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {

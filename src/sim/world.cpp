@@ -2,12 +2,16 @@
 #include <cmath>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "bvh/diffraction_edges.h"
 #include "bvh/mesh_topology.h"
 #include "core/finite.h"
+#include "core/glm_interop.h"
 #include "display/display_checks.h"
 #include "sim/source_checks.h"
 #include "sim/source_display.h"
+#include "sim/world_geometry.h"
 #include "sp_ring.h"
 #include "soundpaint/simulation.h"
 
@@ -89,6 +93,19 @@ void check_config(const Config& c) {
 
 }  // namespace
 
+WorldGeometryHandle::WorldGeometryHandle() : geometry_(std::make_unique<detail::WorldGeometry>()) {}
+WorldGeometryHandle::~WorldGeometryHandle() = default;
+WorldGeometryHandle::WorldGeometryHandle(const WorldGeometryHandle& other)
+    : geometry_(std::make_unique<detail::WorldGeometry>(*other.geometry_)) {}
+WorldGeometryHandle& WorldGeometryHandle::operator=(const WorldGeometryHandle& other) {
+  if (this != &other) geometry_ = std::make_unique<detail::WorldGeometry>(*other.geometry_);
+  return *this;
+}
+WorldGeometryHandle::WorldGeometryHandle(WorldGeometryHandle&& other) noexcept = default;
+WorldGeometryHandle& WorldGeometryHandle::operator=(WorldGeometryHandle&& other) noexcept = default;
+
+std::size_t World::triangle_count() const { return geometry->bvh.triangle_count(); }
+
 Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings) {
   return capture_errors([&]() -> World {
     check_scene(scene);
@@ -114,18 +131,19 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
     // Which triangles form one piece of surface: the matter rules cross a
     // piece met through a shared edge once (docs/model.md#the-rules).
-    MeshTopology topology = analyse_mesh(scene.vertices, scene.triangle_layers, scene.layer_names.size());
-    world.bvh = build_bvh(scene.vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
+    std::vector<glm::vec3> vertices = to_glm(scene.vertices);
+    MeshTopology topology = analyse_mesh(vertices, scene.triangle_layers, scene.layer_names.size());
+    world.geometry->bvh = build_bvh(vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
     // The edges sound bends round, only when it may (docs/model.md#diffraction).
-    if (config.diffraction.enabled) world.bvh.edges = find_exposed_edges(world.bvh);
+    if (config.diffraction.enabled) world.geometry->bvh.edges = find_exposed_edges(world.geometry->bvh);
     if (!scene.instance_names.empty()) {
       world.instance_names = scene.instance_names;
-      world.instance_transforms.assign(scene.instance_names.size(), glm::mat4(1.0f));
-      world.rest_vertices = scene.vertices;
-      world.triangle_instances = scene.triangle_instances;
-      if (world.triangle_instances.empty()) world.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
-      world.triangle_layers = scene.triangle_layers;
-      world.triangle_solids = std::move(topology.triangle_solids);
+      world.instance_transforms.assign(scene.instance_names.size(), Mat4{});
+      world.geometry->rest_vertices = std::move(vertices);
+      world.geometry->triangle_instances = scene.triangle_instances;
+      if (world.geometry->triangle_instances.empty()) world.geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+      world.geometry->triangle_layers = scene.triangle_layers;
+      world.geometry->triangle_solids = std::move(topology.triangle_solids);
     }
     return world;
   });

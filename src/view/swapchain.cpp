@@ -1,3 +1,4 @@
+#include "sp_types.h"
 #include "view/swapchain.h"
 
 #include <algorithm>

@@ -1,5 +1,6 @@
 // The viewer's panel: ImGui 1.86 with its GLFW and Vulkan backends, drawn in
 // a render pass of its own over the swapchain image.
+#include "sp_types.h"
 #include "view/ui_panel.h"
 
 #include <GLFW/glfw3.h>

@@ -1,3 +1,5 @@
+#include "core/glm_interop.h"
+#include "sim/world_geometry.h"
 #include "view/viewer.h"
 
 #include <GLFW/glfw3.h>
@@ -19,7 +21,7 @@
 #include "draw/rendering.h"
 #include "draw/scene_mesh.h"
 #include "draw/scene_pass.h"
-#include "soundpaint/bvh.h"
+#include "bvh/bvh.h"
 #include "soundpaint/config.h"
 #include "soundpaint/display.h"
 #include "soundpaint/visualizer.h"
@@ -268,7 +270,7 @@ void Viewer::place_or_play(bool play) {
   const VkExtent2D extent = swapchain_->extent();
   const glm::vec3 dir = camera_.ray_through(window_.cursor(), extent.width, extent.height);
   const World& world = painting_.visualizer->scene().world();
-  const HitInfo hit = closest_hit(world.bvh, camera_.eye, dir, 0.0f, 1000.0f);
+  const HitInfo hit = closest_hit(world.geometry->bvh, camera_.eye, dir, 0.0f, 1000.0f);
   if (hit.triangle == SP_INVALID) return;
   const glm::vec3 point = camera_.eye + dir * hit.t;
   SoundScene& scene = painting_.visualizer->scene();
@@ -277,7 +279,7 @@ void Viewer::place_or_play(bool play) {
     float best = 2.0f;  // metres: farther sources are not "this one"
     for (std::uint32_t id = 0; id < world.sources.size(); ++id) {
       if (!scene.has_source(id)) continue;
-      const float d = glm::distance(world.sources[id].position, point);
+      const float d = glm::distance(to_glm(world.sources[id].position), point);
       if (d < best) best = d, nearest = id;
     }
     if (nearest) (void)scene.play(*nearest, 1.0);

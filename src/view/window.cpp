@@ -2,6 +2,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include <glm/glm.hpp>
+
 #include "soundpaint/result.h"
 
 namespace sp::view {

@@ -1,3 +1,4 @@
+#include "sp_types.h"
 #include "vk/compute_pipeline.h"
 
 #include <string>

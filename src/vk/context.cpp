@@ -1,3 +1,4 @@
+#include "sp_types.h"
 #include "vk/context.h"
 
 #include <cstdlib>

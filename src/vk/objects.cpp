@@ -1,3 +1,4 @@
+#include "sp_types.h"
 #include "vk/objects.h"
 
 #include <string>

@@ -4,6 +4,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "sp_types.h"
+
 namespace sp::vk {
 
 const char* result_name(VkResult result);

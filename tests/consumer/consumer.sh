@@ -131,11 +131,19 @@ case "$mode" in
     for h in "${headers[@]}"; do echo "#include <$h>"; done >"$out/all.cpp"
     "$cxx" "${cxxflags[@]}" -MMD -MF "$out/all.d" "$out/all.cpp" || fail "the headers do not compile together"
     check_deps "$out/all.d" all.cpp
-    step "each header alone (self-contained)"
+    step "each header alone (self-contained), with nothing of ours but itself and its siblings"
     for h in "${headers[@]}"; do
       name="$(basename "$h" .h)"
       echo "#include <$h>" >"$out/$name.cpp"
-      "$cxx" "${cxxflags[@]}" "$out/$name.cpp" || fail "$h does not compile on its own"
+      # -MD lists the system headers too: glm must be none of them, and only
+      # the Vulkan interop headers may reach Vulkan's.
+      "$cxx" "${cxxflags[@]}" -MD -MF "$out/$name.d" "$out/$name.cpp" || fail "$h does not compile on its own"
+      ! grep -q '/glm/' "$out/$name.d" || fail "$h includes glm"
+      ! grep -qE '/sp_[a-z_]+\.h' "$out/$name.d" || fail "$h includes the shaders' headers"
+      case "$name" in
+        visualizer | soundpaint_vulkan) ;;
+        *) ! grep -q '/vulkan/' "$out/$name.d" || fail "$h includes Vulkan but is not an interop header" ;;
+      esac
     done
     step "the C API's headers as C99"
     printf '#include <soundpaint/soundpaint.h>\n#include <soundpaint/soundpaint_vulkan.h>\n' >"$out/capi.c"

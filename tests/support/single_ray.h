@@ -8,6 +8,7 @@
 
 #include "sim/cpu_tracer.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "sp_ray_model.h"
 
 namespace sp::test {
@@ -36,17 +37,17 @@ struct SingleRay {
   }
 
   // Traces one ray from `origin` along `dir` (normalised here).
-  std::vector<Indicator> trace(glm::vec3 origin, glm::vec3 dir, TraceCounters& counters) {
-    TraceContext context{&world.bvh, layers, sources, make_sim_params(config, 0)};
+  std::vector<shader::Indicator> trace(glm::vec3 origin, glm::vec3 dir, TraceCounters& counters) {
+    TraceContext context{&world.geometry->bvh, layers, sources, make_sim_params(config, 0)};
     shader::RayState ray = shader::sp_emit_ray(sources[0], 0, 0, config.seed, 0);
     ray.origin = origin;
     ray.dir = glm::normalize(dir);
     counters.layers.assign(world.layer_names.size(), {});
-    std::vector<Indicator> out;
+    std::vector<shader::Indicator> out;
     trace_ray(context, ray, out, counters);
     return out;
   }
-  std::vector<Indicator> trace(glm::vec3 origin, glm::vec3 dir) {
+  std::vector<shader::Indicator> trace(glm::vec3 origin, glm::vec3 dir) {
     TraceCounters counters;
     return trace(origin, dir, counters);
   }

@@ -23,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sp_types.h"
 #include "vk/context.h"
 #include "vk/debug_messenger.h"
 

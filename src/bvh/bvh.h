@@ -1,6 +1,7 @@
 // Bounding volume hierarchy over a triangle soup: binned SAH build, flattened
 // into the std430 layout of shaders/shared/sp_types.h that the GPU traverses
 // unchanged, plus a CPU-only 4-wide copy that closest_hit traverses.
+// Internal: a World keeps its Bvh in its opaque geometry (src/sim/world_geometry.h).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "soundpaint/math.h"
 #include "soundpaint/result.h"
+#include "soundpaint/simulation.h"
 #include "sp_types.h"
 
 namespace sp {
@@ -19,17 +22,8 @@ using BvhNode = shader::BvhNode;
 using BvhTriangle = shader::BvhTriangle;
 using HitInfo = shader::HitInfo;
 
-struct BvhBuildSettings {
-  std::uint32_t bins = 16;            // SAH bins per axis and split
-  std::uint32_t max_leaf_size = 4;    // leaves never hold more unless the depth cap forces it
-  float traversal_cost = 1.0f;        // SAH cost of visiting a node, relative to one triangle test
-  std::uint32_t max_depth = SP_BVH_MAX_DEPTH;  // levels including the root; <= SP_BVH_MAX_DEPTH
-  // Threads the build may use: 0 means std::thread::hardware_concurrency(),
-  // 1 builds on the calling thread only. Subtrees near the root are built
-  // concurrently and spliced in a fixed order, so the result (nodes,
-  // triangles, depth) is byte-identical for every value.
-  unsigned threads = 0;
-};
+// BvhBuildSettings is public (soundpaint/simulation.h: make_world takes it).
+static_assert(BvhBuildSettings{}.max_depth == SP_BVH_MAX_DEPTH);
 
 // The CPU's 4-wide tree (src/bvh/wide_bvh.h); opaque outside the bvh module.
 struct WideBvh;

@@ -1,0 +1,27 @@
+// What a World holds behind its opaque WorldGeometryHandle: the BVH the
+// backends trace and, for scenes with moving parts, what refitting and
+// rebuilding it needs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bvh/bvh.h"
+#include "soundpaint/math.h"
+#include "soundpaint/simulation.h"
+
+namespace sp::detail {
+
+struct WorldGeometry {
+  Bvh bvh;
+  // Moving parts only (empty when the scene has none):
+  std::vector<glm::vec3> rest_vertices;               // scene's vertices, 3 per triangle
+  std::vector<std::uint32_t> triangle_instances;  // per triangle, or kStaticInstance
+  std::vector<std::uint32_t> triangle_layers;     // per triangle (scene order), for rebuilds
+  std::vector<std::uint32_t> triangle_solids;     // per triangle (scene order), for rebuilds
+  double build_sah_cost = 0.0;  // the BVH's absolute SAH cost after its last build (set by SoundScene)
+};
+
+}  // namespace sp::detail
