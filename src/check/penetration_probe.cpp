@@ -18,7 +18,7 @@ constexpr float kProbeRange = 200.0f;
 
 glm::vec3 bounds_centre(const Scene& scene) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec3& v : scene.vertices) {
+  for (const glm::vec3 v : scene.vertices) {
     lo = glm::min(lo, v);
     hi = glm::max(hi, v);
   }

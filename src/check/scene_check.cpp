@@ -70,7 +70,7 @@ void add_topology_findings(const Scene& scene, const MeshTopology& topology, std
 
 void add_scale_finding(const Scene& scene, std::vector<CheckFinding>& findings) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec3& v : scene.vertices) {
+  for (const glm::vec3 v : scene.vertices) {
     lo = glm::min(lo, v);
     hi = glm::max(hi, v);
   }
