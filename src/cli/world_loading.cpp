@@ -18,11 +18,6 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
   return LoadedWorld{std::move(scene), std::move(world)};
 }
 
-World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                 std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options) {
-  return load_scene_and_world(scene_path, config_path, seed_override, scene_options).world;
-}
-
 void warn_if_penetration_fails(const Scene& scene, const Config& config) {
   CheckSettings settings;
   settings.probe_reach = 0.0f;  // what a simulation with this config sees

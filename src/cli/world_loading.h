@@ -21,16 +21,12 @@ struct LoadedWorld {
   World world;
 };
 
-// load_world() that also returns the scene.
+// Loads the scene (as `scene_options` allow) and optional config, applies a
+// --seed override, builds the World; returns both. Throws sp::Exception
+// naming the file and problem.
 LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optional<std::string>& config_path,
                                  std::optional<std::uint64_t> seed_override,
                                  const SceneLoadOptions& scene_options = {});
-
-// Loads the scene (as `scene_options` allow) and optional config, applies a
-// --seed override, builds the World. Throws sp::Exception naming the file
-// and problem.
-World load_world(const std::string& scene_path, const std::optional<std::string>& config_path,
-                 std::optional<std::uint64_t> seed_override, const SceneLoadOptions& scene_options = {});
 
 // Runs the penetration probe (include/soundpaint/check.h) at the config's
 // W_max and prints its one-line warning on stderr when most penetrations

@@ -28,7 +28,6 @@ class SceneDepthSets {
   // Frees every set. Not while a command buffer using one is pending.
   void clear();
 
-  std::uint32_t size() const { return static_cast<std::uint32_t>(sets_.size()); }
 
  private:
   const vk::Context* context_ = nullptr;

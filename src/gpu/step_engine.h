@@ -45,9 +45,6 @@ class StepEngine {
   void record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t first_step, std::uint32_t count,
               const RecordOptions& options);
 
-  // The last planned step's emitted rays (for tests and timings).
-  std::uint32_t last_planned_rays() const { return plan_.total_rays; }
-
   GpuResources& resources() { return resources_; }
   const GpuResources& resources() const { return resources_; }
   IndicatorView view();

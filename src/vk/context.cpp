@@ -375,12 +375,6 @@ std::uint32_t Context::validation_message_count() const {
   return messages_->count;
 }
 
-std::vector<std::string> Context::validation_messages() const {
-  if (!messages_) return {};
-  const std::lock_guard lock(messages_->mutex);
-  return messages_->texts;
-}
-
 std::uint32_t Context::memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required,
                                    VkMemoryPropertyFlags preferred) const {
   for (const VkMemoryPropertyFlags wanted : {required | preferred, required}) {

@@ -77,9 +77,8 @@ class Context {
   // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
   std::string description() const;
 
-  // Validation messages (warning or error severity) seen so far, and their texts.
+  // Validation messages (warning or error severity) seen so far.
   std::uint32_t validation_message_count() const;
-  std::vector<std::string> validation_messages() const;
   bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
 
   // Index of a memory type allowed by `type_bits` having all `required`

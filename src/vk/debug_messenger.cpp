@@ -44,7 +44,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
   if (auto* sink = static_cast<MessageLog*>(user_data)) {
     const std::lock_guard lock(sink->mutex);
     ++sink->count;
-    if (sink->texts.size() < kMaxStoredMessages) sink->texts.push_back(std::move(text));
   }
   return VK_FALSE;  // never abort the call that triggered the message
 }

@@ -17,7 +17,6 @@ namespace sp::vk {
 struct MessageLog {
   mutable std::mutex mutex;
   std::uint32_t count = 0;
-  std::vector<std::string> texts;  // the first few thousand texts
 };
 
 // Create info for a messenger of warning and error severities, all message
