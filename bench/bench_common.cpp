@@ -122,9 +122,12 @@ Pattern parse_pattern(const CommandLine& cli, const std::string& name) {
 
 const char* pattern_name(Pattern pattern) {
   switch (pattern) {
-    case Pattern::Scene: return "scene";
-    case Pattern::Paper: return "paper";
-    case Pattern::Burst: return "burst";
+    case Pattern::Scene:
+      return "scene";
+    case Pattern::Paper:
+      return "paper";
+    case Pattern::Burst:
+      return "burst";
   }
   return "?";
 }

@@ -134,15 +134,15 @@ LoopRun run_frame_loop(sp::Simulator& sim, const LoopSettings& settings);
 // statistics (rule 30: median of N runs).
 struct LoopSummary {
   std::size_t runs = 0;
-  std::size_t steps = 0;               // frames measured, all runs together
-  double ms_median = 0.0;              // wall time of a frame
+  std::size_t steps = 0;   // frames measured, all runs together
+  double ms_median = 0.0;  // wall time of a frame
   double ms_p99 = 0.0;
   std::optional<double> gpu_ms_median;  // GPU timestamps
   std::optional<double> gpu_ms_p99;
-  double baseline_ms_median = 0.0;     // the loop without soundpaint
-  double overhead_ms = 0.0;            // ms_median - baseline_ms_median
+  double baseline_ms_median = 0.0;  // the loop without soundpaint
+  double overhead_ms = 0.0;         // ms_median - baseline_ms_median
   double casts_per_step = 0.0;
-  double casts_per_second = 0.0;       // casts / wall time of the frames
+  double casts_per_second = 0.0;  // casts / wall time of the frames
   double rays_per_step = 0.0;
   double indicators_per_step = 0.0;
 };

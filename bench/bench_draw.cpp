@@ -99,7 +99,7 @@ Options parse(int argc, char** argv) {
 // sources (their shapes) in 15 colours, all born at step 0 (drawn 6 steps
 // later: faded in, not yet faded out).
 std::vector<sp::shader::Indicator> synthetic_indicators(const sp::World& world, const sp::draw::ViewCamera& camera,
-                                                std::uint32_t count, float radius, std::uint32_t seed) {
+                                                        std::uint32_t count, float radius, std::uint32_t seed) {
   std::vector<const sp::BvhTriangle*> candidates;
   std::vector<double> areas;
   for (const sp::BvhTriangle& t : world.geometry->bvh.triangles) {

@@ -185,7 +185,9 @@ sp::Scene with_door(sp::Scene scene) {
   scene.instance_names = {"door"};
   scene.triangle_instances.assign(scene.triangle_count(), sp::kStaticInstance);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
-    const glm::vec3 c = (sp::to_glm(scene.vertices[3 * t]) + sp::to_glm(scene.vertices[3 * t + 1]) + sp::to_glm(scene.vertices[3 * t + 2])) / 3.0f;
+    const glm::vec3 c = (sp::to_glm(scene.vertices[3 * t]) + sp::to_glm(scene.vertices[3 * t + 1]) +
+                         sp::to_glm(scene.vertices[3 * t + 2])) /
+                        3.0f;
     if (glm::all(glm::lessThan(glm::abs(c - centre), glm::vec3(1.0f)))) scene.triangle_instances[t] = 0;
   }
   return scene;
@@ -193,8 +195,8 @@ sp::Scene with_door(sp::Scene scene) {
 
 void bench_refit(const std::string& name, sp::Scene scene, const sp::Config& config) {
   scene = with_door(std::move(scene));
-  const auto door = static_cast<std::size_t>(std::count(scene.triangle_instances.begin(),
-                                                        scene.triangle_instances.end(), 0u));
+  const auto door =
+      static_cast<std::size_t>(std::count(scene.triangle_instances.begin(), scene.triangle_instances.end(), 0u));
   sp::SoundScene live(sp::make_world(scene, config).value());
   std::vector<double> ms;
   std::size_t bytes = 0;

@@ -79,7 +79,8 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--runs") o.runs = cli.to_uint(value, flag);
     else if (flag == "--build-runs") o.build_runs = cli.to_uint(value, flag);
     else if (flag == "--threads") o.threads = cli.to_uint(value, flag);
-    else if (flag == "--backends") o.backends = value == "none" ? std::vector<std::string>{} : CommandLine::split(value);
+    else if (flag == "--backends")
+      o.backends = value == "none" ? std::vector<std::string>{} : CommandLine::split(value);
     else if (flag == "--sim-steps") o.loop.steps = cli.to_uint(value, flag);
     else if (flag == "--sim-max-seconds") o.loop.max_seconds = cli.to_double(value, flag);
     else if (flag == "--json") o.json = value;
@@ -118,7 +119,8 @@ std::vector<CastRay> emitted_rays(const sp::World& world, std::size_t count) {
 using Caster = std::function<void(const CastRay* rays, std::size_t count, CastHit* hits)>;
 
 // Casts all rays on the pool in chunks of 64.
-void cast_all(sp::ThreadPool& pool, const Caster& caster, const std::vector<CastRay>& rays, std::vector<CastHit>& hits) {
+void cast_all(sp::ThreadPool& pool, const Caster& caster, const std::vector<CastRay>& rays,
+              std::vector<CastHit>& hits) {
   hits.resize(rays.size());
   pool.parallel_for(rays.size(), 64, [&](std::size_t first, std::size_t last, unsigned) {
     caster(rays.data() + first, last - first, hits.data() + first);
@@ -166,10 +168,8 @@ int run(const CommandLine& cli, const Options& options) {
   std::printf("host: %s\n", spbench::host_description().c_str());
   std::printf("casting on %u threads; %u emitted rays per pass (budget %u per step), median of %u passes\n", threads,
               options.rays, options.budget, options.runs);
-  if (embree)
-    std::printf("Embree %s\n", embree->c_str());
-  else
-    std::printf("Embree not available: built without libembree-dev\n");
+  if (embree) std::printf("Embree %s\n", embree->c_str());
+  else std::printf("Embree not available: built without libembree-dev\n");
   const std::vector<EmbreeBuild> embree_builds = {
       {EmbreeQuality::Medium, threads, true}, {EmbreeQuality::High, threads, true}, {EmbreeQuality::Medium, 1, false}};
 
@@ -187,7 +187,8 @@ int run(const CommandLine& cli, const Options& options) {
     }
     const sp::World& world = *made;
     std::printf("\nscene %s: %zu triangles, %zu sources; BVH %zu nodes, depth %u\n", spec.c_str(),
-                scene.triangle_count(), scene.sources.size(), world.geometry->bvh.nodes.size(), world.geometry->bvh.depth);
+                scene.triangle_count(), scene.sources.size(), world.geometry->bvh.nodes.size(),
+                world.geometry->bvh.depth);
     Json row = {{"spec", spec}, {"triangles", scene.triangle_count()}, {"sources", scene.sources.size()}};
 
     // BVH builds.
@@ -215,7 +216,8 @@ int run(const CommandLine& cli, const Options& options) {
     const Caster soundpaint = [&](const CastRay* r, std::size_t count, CastHit* out) {
       for (std::size_t i = 0; i < count; ++i) {
         const sp::HitInfo hit = sp::closest_hit(world.geometry->bvh, r[i].origin, r[i].dir, r[i].tmin, r[i].tmax);
-        out[i] = hit.triangle == SP_INVALID ? CastHit{} : CastHit{hit.t, world.geometry->bvh.triangles[hit.triangle].scene_index};
+        out[i] = hit.triangle == SP_INVALID ? CastHit{}
+                                            : CastHit{hit.t, world.geometry->bvh.triangles[hit.triangle].scene_index};
       }
     };
     std::vector<CastHit> reference;
@@ -239,10 +241,10 @@ int run(const CommandLine& cli, const Options& options) {
       }
       const std::string name = std::string("embree ") + spbench::quality_name(config_e.quality);
       builds.push_back({{"builder", name}, {"threads", config_e.threads}, {"ms", sp::median(ms)}});
-      std::printf("  BVH build  %-34s %10.2f ms\n",
-                  (name + " (" + std::to_string(config_e.threads) + " thread" + (config_e.threads == 1 ? ")" : "s)"))
-                      .c_str(),
-                  sp::median(ms));
+      std::printf(
+          "  BVH build  %-34s %10.2f ms\n",
+          (name + " (" + std::to_string(config_e.threads) + " thread" + (config_e.threads == 1 ? ")" : "s)")).c_str(),
+          sp::median(ms));
       if (!config_e.cast) continue;
       const spbench::EmbreeScene& e = *tree;
       const std::pair<const char*, Caster> entry_points[] = {

@@ -119,8 +119,8 @@ int run(const CommandLine& cli, const Options& options) {
   }
 
   spbench::Json results = spbench::Json::array();
-  std::printf("%-4s %7s %6s %9s %9s %9s %9s %8s %9s %11s %9s %9s %6s\n", "back", "budget", "steps", "ms med",
-              "ms p99", "gpu med", "gpu p99", "base ms", "overhead", "casts/step", "Mcasts/s", "ind/step", "paper");
+  std::printf("%-4s %7s %6s %9s %9s %9s %9s %8s %9s %11s %9s %9s %6s\n", "back", "budget", "steps", "ms med", "ms p99",
+              "gpu med", "gpu p99", "base ms", "overhead", "casts/step", "Mcasts/s", "ind/step", "paper");
   for (std::uint32_t budget : options.budgets) {
     config.ray_budget = budget;
     const sp::World world = sp::make_world(scene, config).value();
@@ -139,7 +139,8 @@ int run(const CommandLine& cli, const Options& options) {
       const spbench::LoopSummary s = spbench::summarize(runs);
       const auto paper = kPaperOverheadMs.find(budget);
       std::printf("%-4s %7u %6zu %9.4f %9.4f %9s %9s %8.5f %9.4f %11.0f %9.3f %9.1f %6s\n", backend.name.c_str(),
-                  budget, s.steps, s.ms_median, s.ms_p99, s.gpu_ms_median ? format("%.4f", *s.gpu_ms_median).c_str() : "-",
+                  budget, s.steps, s.ms_median, s.ms_p99,
+                  s.gpu_ms_median ? format("%.4f", *s.gpu_ms_median).c_str() : "-",
                   s.gpu_ms_p99 ? format("%.4f", *s.gpu_ms_p99).c_str() : "-", s.baseline_ms_median, s.overhead_ms,
                   s.casts_per_step, s.casts_per_second * 1e-6, s.indicators_per_step,
                   paper != kPaperOverheadMs.end() ? format("%.2f", paper->second).c_str() : "-");

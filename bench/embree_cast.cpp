@@ -41,7 +41,8 @@ EmbreeScene::EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality qual
   const std::string config = "threads=" + std::to_string(threads);
   impl_->device = rtcNewDevice(config.c_str());
   if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
-  const RTCBuildQuality build_quality = quality == EmbreeQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
+  const RTCBuildQuality build_quality =
+      quality == EmbreeQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
 
   RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* positions = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -118,7 +119,8 @@ void EmbreeScene::intersect16(const CastRay* rays, std::size_t count, CastHit* h
     }
     rtcIntersect16(valid, impl_->scene, &context, &rh);
     for (std::size_t k = 0; k < 16 && first + k < count; ++k)
-      hits[first + k] = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? CastHit{} : CastHit{rh.ray.tfar[k], rh.hit.primID[k]};
+      hits[first + k] =
+          rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? CastHit{} : CastHit{rh.ray.tfar[k], rh.hit.primID[k]};
   }
 }
 

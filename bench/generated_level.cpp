@@ -11,10 +11,10 @@
 namespace spbench {
 namespace {
 
-constexpr int kRooms = 4;           // per side
-constexpr float kCell = 8.0f;       // room pitch, metres
-constexpr float kHeight = 3.0f;     // floor top to ceiling bottom
-constexpr float kWall = 0.2f;       // wall and slab thickness
+constexpr int kRooms = 4;        // per side
+constexpr float kCell = 8.0f;    // room pitch, metres
+constexpr float kHeight = 3.0f;  // floor top to ceiling bottom
+constexpr float kWall = 0.2f;    // wall and slab thickness
 constexpr float kDoorWidth = 1.2f;
 constexpr float kDoorHeight = 2.2f;
 constexpr std::uint32_t kSources = 15;
@@ -80,10 +80,8 @@ void emit_faces(sp::Scene& scene, const Box& box, const int axes[3], double h) {
           return p;
         };
         // (u, v, n) is right-handed, so u-then-v winds towards +n.
-        if (side)
-          emit_quad(scene, corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1), box.layer);
-        else
-          emit_quad(scene, corner(i, j), corner(i, j + 1), corner(i + 1, j + 1), corner(i + 1, j), box.layer);
+        if (side) emit_quad(scene, corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1), box.layer);
+        else emit_quad(scene, corner(i, j), corner(i, j + 1), corner(i + 1, j + 1), corner(i + 1, j), box.layer);
       }
     }
   }
@@ -125,8 +123,8 @@ sp::Scene generate_level(std::size_t target_triangles) {
   const float extent = kRooms * kCell;
   std::vector<Box> boxes;
   boxes.push_back({{-kWall / 2, -kWall, -kWall / 2}, {extent + kWall / 2, 0.0f, extent + kWall / 2}, kConcrete});
-  boxes.push_back({{-kWall / 2, kHeight, -kWall / 2}, {extent + kWall / 2, kHeight + kWall, extent + kWall / 2},
-                   kConcrete});
+  boxes.push_back(
+      {{-kWall / 2, kHeight, -kWall / 2}, {extent + kWall / 2, kHeight + kWall, extent + kWall / 2}, kConcrete});
   // Walls along x run the full width; walls along z fit between them.
   for (int line = 0; line <= kRooms; ++line) {
     const bool outer = line == 0 || line == kRooms;

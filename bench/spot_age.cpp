@@ -27,8 +27,7 @@ struct Options {
 };
 
 [[noreturn]] void usage(const std::string& problem) {
-  std::fprintf(stderr,
-               "spot_age: %s\nusage: spot_age [--scene FILE] [--steps N] [--rays R] [--capacities A,B,...]\n",
+  std::fprintf(stderr, "spot_age: %s\nusage: spot_age [--scene FILE] [--steps N] [--rays R] [--capacities A,B,...]\n",
                problem.c_str());
   std::exit(2);
 }

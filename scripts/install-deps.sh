@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages soundpaint builds and tests with, if any is
-# missing. Needs root (or sudo). `install-deps.sh fuzz` adds what
-# scripts/fuzz.sh needs: clang, and the libFuzzer and sanitizer runtimes
-# (libclang-rt-14-dev, only recommended by clang, so named here).
+# missing. Needs root (or sudo). `install-deps.sh fuzz` adds the clang
+# tools CI uses: clang, the libFuzzer and sanitizer runtimes scripts/fuzz.sh
+# needs (libclang-rt-14-dev, only recommended by clang, so named here) and
+# clang-format for scripts/format.sh.
 set -euo pipefail
 
 packages=(
@@ -13,7 +14,7 @@ packages=(
   libglfw3-dev libimgui-dev xvfb xauth
 )
 if [ "${1:-}" = fuzz ]; then
-  packages+=(clang libclang-rt-14-dev)
+  packages+=(clang libclang-rt-14-dev clang-format)
 fi
 
 missing=()

@@ -195,7 +195,9 @@ TEST_F(GpuLimits, StepsAfterTheBudgetSplitNeverExceedTheBuffers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, BackendPhysics, ::testing::Values(Backend::Cpu, Backend::Gpu),
-                         [](const auto& test_info) { return std::string(test_info.param == Backend::Cpu ? "cpu" : "gpu"); });
+                         [](const auto& test_info) {
+                           return std::string(test_info.param == Backend::Cpu ? "cpu" : "gpu");
+                         });
 
 }  // namespace
 }  // namespace sp

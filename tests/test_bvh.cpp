@@ -71,7 +71,8 @@ std::size_t count_exact_ties(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
     if (best.triangle == SP_INVALID) continue;
     auto q = sp::shader::sp_make_query(r.origin, r.dir, r.tmin, r.tmax);
     std::size_t same = 0;
-    for (const sp::BvhTriangle& t : bvh.triangles) same += sp::shader::sp_intersect_triangle(q, t.v0, t.v1, t.v2) == best.t;
+    for (const sp::BvhTriangle& t : bvh.triangles)
+      same += sp::shader::sp_intersect_triangle(q, t.v0, t.v1, t.v2) == best.t;
     ties += same > 1;
   }
   return ties;
@@ -315,8 +316,7 @@ TEST(Bvh, UnitSquareHitsByHand) {
   EXPECT_EQ(scene_hit(vec3(0.25f, 0.75f, 0), vec3(0, 0, 1), 0, 5.0f), std::pair(1u, 5.0f));
   EXPECT_EQ(scene_hit(vec3(0.25f, 0.75f, 0), vec3(0, 0, 1), 0, std::nextafter(5.0f, 0.0f)).first, SP_INVALID);
   EXPECT_EQ(scene_hit(vec3(0.25f, 0.75f, 0), vec3(0, 0, 1), 5.0f, kNoLimit).first, SP_INVALID);
-  EXPECT_EQ(scene_hit(vec3(0.25f, 0.75f, 0), vec3(0, 0, 1), std::nextafter(5.0f, 0.0f), kNoLimit),
-            std::pair(1u, 5.0f));
+  EXPECT_EQ(scene_hit(vec3(0.25f, 0.75f, 0), vec3(0, 0, 1), std::nextafter(5.0f, 0.0f), kNoLimit), std::pair(1u, 5.0f));
   // Watertight: rays from anywhere through points of the diagonal never miss.
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(0.0f, 1.0f), w(-20.0f, 20.0f);
@@ -336,8 +336,8 @@ TEST(Bvh, CoincidentTrianglesLowestSceneIndexWins) {
   // Hand-made tree whose first-visited leaf holds the higher scene index.
   sp::Bvh bvh;
   bvh.triangles = {{a, 0, b, 9, c, 0, vec3(0, 0, 1), 0}, {a, 0, b, 3, c, 0, vec3(0, 0, 1), 0}};
-  bvh.nodes = {{vec3(0, 0, 5), 1, vec3(2, 2, 5), 0}, {vec3(0, 0, 5), 0, vec3(2, 2, 5), 1},
-               {vec3(0, 0, 5), 1, vec3(2, 2, 5), 1}};
+  bvh.nodes = {
+      {vec3(0, 0, 5), 1, vec3(2, 2, 5), 0}, {vec3(0, 0, 5), 0, vec3(2, 2, 5), 1}, {vec3(0, 0, 5), 1, vec3(2, 2, 5), 1}};
   bvh.depth = 2;
   sp::HitInfo h = sp::closest_hit(bvh, vec3(0.5f, 0.5f, 0), vec3(0, 0, 1), 0, kNoLimit);
   EXPECT_EQ(h.triangle, 1u);

@@ -30,7 +30,7 @@ std::string last_error() { return sp_last_error_message(); }
 // clockwise side) towards the source at the origin, as a wall's is.
 constexpr float kHalf = 10.0f;
 const std::vector<float> kQuad = {
-    -kHalf, -kHalf, 1.0f, -kHalf, kHalf, 1.0f, kHalf, kHalf, 1.0f,  //
+    -kHalf, -kHalf, 1.0f, -kHalf, kHalf, 1.0f, kHalf, kHalf,  1.0f,  //
     -kHalf, -kHalf, 1.0f, kHalf,  kHalf, 1.0f, kHalf, -kHalf, 1.0f,  //
 };
 const std::vector<std::uint32_t> kQuadLayers = {0, 0};
@@ -94,8 +94,7 @@ TEST(CapiScene, CreateRejectsNullPointersAndZeroCounts) {
   EXPECT_EQ(sp_scene_create(nullptr, 2, kQuadLayers.data(), kLayerNames, 1, &scene), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_scene_create(kQuad.data(), 2, nullptr, kLayerNames, 1, &scene), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_scene_create(kQuad.data(), 2, kQuadLayers.data(), nullptr, 1, &scene), SP_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(sp_scene_create(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, nullptr),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sp_scene_create(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, nullptr), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_scene_create(kQuad.data(), 0, kQuadLayers.data(), kLayerNames, 1, &scene), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("triangle_count"), std::string::npos) << last_error();
   EXPECT_EQ(sp_scene_create(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 0, &scene), SP_ERROR_INVALID_ARGUMENT);
@@ -110,8 +109,7 @@ TEST(CapiScene, CreateRejectsNonFiniteVertices) {
     std::vector<float> vertices = kQuad;
     vertices[13] = bad;  // triangle 1, vertex 4, y
     sp_scene* scene = nullptr;
-    EXPECT_EQ(sp_scene_create(vertices.data(), 2, kQuadLayers.data(), kLayerNames, 1, &scene),
-              SP_ERROR_INVALID_SCENE);
+    EXPECT_EQ(sp_scene_create(vertices.data(), 2, kQuadLayers.data(), kLayerNames, 1, &scene), SP_ERROR_INVALID_SCENE);
     EXPECT_NE(last_error().find("vertex 4"), std::string::npos) << last_error();
     EXPECT_EQ(scene, nullptr);
   }
@@ -550,7 +548,7 @@ TEST_F(CapiRoom, PlayMakesASilentSourceSoundForItsWindow) {
   sp_source_desc desc = source_at(0.0f, 1.0f, 1.0f);
   desc.duration = 0.0;  // silent by pattern
   const std::uint32_t id = add(desc);
-  step();  // step 0: silent
+  step();                                                                   // step 0: silent
   ASSERT_EQ(sp_sound_scene_play(sound_, id, 0.15), SP_OK) << last_error();  // [0.1, 0.25)
   for (int k = 0; k < 3; ++k) step();
   EXPECT_TRUE(of_step(sim_, 0).empty());
@@ -684,9 +682,9 @@ TEST(CapiInstances, MovedDoorCatchesTheRaysAtItsNewPlace) {
   const std::uint32_t instances[] = {0, 0};
   const char* const names[] = {"door"};
   sp_scene* scene = nullptr;
-  ASSERT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, instances, names, 1,
-                                           &scene),
-            SP_OK)
+  ASSERT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, instances, names, 1, &scene),
+      SP_OK)
       << last_error();
   sp_simulation* sim = nullptr;
   ASSERT_EQ(sp_simulation_create(scene, kQuadConfig, SP_BACKEND_CPU, &sim), SP_OK) << last_error();
@@ -728,32 +726,32 @@ TEST(CapiInstances, CreateChecksInstanceIdsAndNames) {
   const char* const names[] = {"door"};
   sp_scene* scene = nullptr;
   const std::uint32_t out_of_range[] = {0, 1};
-  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, out_of_range, names,
-                                           1, &scene),
+  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, out_of_range, names, 1,
+                                           &scene),
             SP_ERROR_INVALID_SCENE);
   EXPECT_NE(last_error().find("triangle 1 has instance id 1"), std::string::npos) << last_error();
   const std::uint32_t moving[] = {0, SP_STATIC_INSTANCE};
-  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, names, 0,
-                                           &scene),
-            SP_ERROR_INVALID_SCENE);  // no instances, yet triangle 0 names one
-  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, nullptr, names, 1,
-                                           &scene),
-            SP_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, nullptr, 1,
-                                           &scene),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, names, 0, &scene),
+      SP_ERROR_INVALID_SCENE);  // no instances, yet triangle 0 names one
+  EXPECT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, nullptr, names, 1, &scene),
+      SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, nullptr, 1, &scene),
+      SP_ERROR_INVALID_ARGUMENT);
   const char* const null_name[] = {nullptr};
-  EXPECT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, null_name,
-                                           1, &scene),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, moving, null_name, 1, &scene),
+      SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("instance_names[0]"), std::string::npos) << last_error();
   EXPECT_EQ(scene, nullptr);
 
   // Every triangle static, or no instance arrays at all: a plain scene.
   const std::uint32_t all_static[] = {SP_STATIC_INSTANCE, SP_STATIC_INSTANCE};
   for (const std::uint32_t* instances : {all_static, static_cast<const std::uint32_t*>(nullptr)}) {
-    ASSERT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, instances, nullptr,
-                                             0, &scene),
+    ASSERT_EQ(sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, instances, nullptr, 0,
+                                             &scene),
               SP_OK)
         << last_error();
     EXPECT_EQ(sp_scene_destroy(scene), SP_OK);
@@ -791,8 +789,7 @@ TEST(CapiHandles, CallsAfterDestroyAreDetected) {
   sp_indicator indicator{};
   sp_sound_scene* again = nullptr;
   EXPECT_EQ(sp_simulation_step(sim), SP_ERROR_INVALID_ARGUMENT);
-  EXPECT_NE(last_error().find("sp_simulation_step: simulation handle is not live"), std::string::npos)
-      << last_error();
+  EXPECT_NE(last_error().find("sp_simulation_step: simulation handle is not live"), std::string::npos) << last_error();
   EXPECT_EQ(sp_simulation_set_listener(sim, 0, 0, 0), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_simulation_play(sim, 0, 1.0), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_simulation_source_count(sim, &count), SP_ERROR_INVALID_ARGUMENT);
@@ -841,8 +838,7 @@ TEST(CapiHandles, NeverCreatedHandlesAreRejected) {
   EXPECT_EQ(sp_sound_scene_remove_source(sound, 0), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_destroy(vis), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_wait(vis), SP_ERROR_INVALID_ARGUMENT);
-  EXPECT_NE(last_error().find("sp_visualizer_wait: visualizer handle is not live"), std::string::npos)
-      << last_error();
+  EXPECT_NE(last_error().find("sp_visualizer_wait: visualizer handle is not live"), std::string::npos) << last_error();
 
   // A live simulation is not a live scene, and its sound scene is not it.
   sp_scene* real_scene = make_quad_scene();
@@ -903,8 +899,7 @@ TEST(CapiVisualizerWithoutDevice, RejectsNullAndUnsetArguments) {
   EXPECT_EQ(sp_visualizer_create(nullptr, &target, scene, kQuadConfig, SP_BACKEND_GPU, &vis),
             SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("host is NULL"), std::string::npos) << last_error();
-  EXPECT_EQ(sp_visualizer_create(&host, nullptr, scene, kQuadConfig, SP_BACKEND_GPU, &vis),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sp_visualizer_create(&host, nullptr, scene, kQuadConfig, SP_BACKEND_GPU, &vis), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_create(&host, &target, nullptr, kQuadConfig, SP_BACKEND_GPU, &vis),
             SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_create(&host, &target, scene, kQuadConfig, SP_BACKEND_GPU, nullptr),
@@ -913,8 +908,7 @@ TEST(CapiVisualizerWithoutDevice, RejectsNullAndUnsetArguments) {
             SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_create(&host, &target, scene, "{ not json", SP_BACKEND_GPU, &vis), SP_ERROR_INVALID_CONFIG);
   // Null Vulkan handles are rejected before any Vulkan call.
-  EXPECT_EQ(sp_visualizer_create(&host, &target, scene, kQuadConfig, SP_BACKEND_GPU, &vis),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sp_visualizer_create(&host, &target, scene, kQuadConfig, SP_BACKEND_GPU, &vis), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("VkDevice"), std::string::npos) << last_error();
   EXPECT_EQ(vis, nullptr);
 
@@ -926,8 +920,7 @@ TEST(CapiVisualizerWithoutDevice, RejectsNullAndUnsetArguments) {
   EXPECT_EQ(sp_visualizer_scene(nullptr, &sound), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_backend(nullptr, &backend), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_record_simulation(nullptr, VK_NULL_HANDLE, 0.1, &recorded), SP_ERROR_INVALID_ARGUMENT);
-  EXPECT_EQ(sp_visualizer_record_draw(nullptr, VK_NULL_HANDLE, identity, identity, nullptr),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sp_visualizer_record_draw(nullptr, VK_NULL_HANDLE, identity, identity, nullptr), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_wait(nullptr), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(sp_visualizer_steps_run(nullptr, &steps), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("sp_visualizer_steps_run: visualizer is NULL"), std::string::npos) << last_error();

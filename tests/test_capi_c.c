@@ -124,24 +124,44 @@ int main(void) {
   if (r != SP_OK) return failed("sp_simulation_create", r);
 
   r = sp_simulation_source_count(simulation, &sources);
-  if (r != SP_OK) { failed("sp_simulation_source_count", r); goto done; }
-  if (sources != 1) { fprintf(stderr, "test_capi_c: expected 1 source, got %u\n", (unsigned)sources); goto done; }
+  if (r != SP_OK) {
+    failed("sp_simulation_source_count", r);
+    goto done;
+  }
+  if (sources != 1) {
+    fprintf(stderr, "test_capi_c: expected 1 source, got %u\n", (unsigned)sources);
+    goto done;
+  }
 
   for (step = 0; step < 5; ++step) {
     r = sp_simulation_step(simulation);
-    if (r != SP_OK) { failed("sp_simulation_step", r); goto done; }
+    if (r != SP_OK) {
+      failed("sp_simulation_step", r);
+      goto done;
+    }
   }
 
   r = sp_simulation_live_indicators(simulation, NULL, 0, &count); /* size query */
-  if (r != SP_OK) { failed("sp_simulation_live_indicators (size)", r); goto done; }
-  if (count == 0) { fprintf(stderr, "test_capi_c: no live indicators after 5 steps\n"); goto done; }
+  if (r != SP_OK) {
+    failed("sp_simulation_live_indicators (size)", r);
+    goto done;
+  }
+  if (count == 0) {
+    fprintf(stderr, "test_capi_c: no live indicators after 5 steps\n");
+    goto done;
+  }
   indicators = (sp_indicator*)malloc(count * sizeof(sp_indicator));
-  if (indicators == NULL) { fprintf(stderr, "test_capi_c: out of memory\n"); goto done; }
+  if (indicators == NULL) {
+    fprintf(stderr, "test_capi_c: out of memory\n");
+    goto done;
+  }
   r = sp_simulation_live_indicators(simulation, indicators, count, &written);
-  if (r != SP_OK) { failed("sp_simulation_live_indicators", r); goto done; }
+  if (r != SP_OK) {
+    failed("sp_simulation_live_indicators", r);
+    goto done;
+  }
   if (written != count) {
-    fprintf(stderr, "test_capi_c: live count changed between calls: %u then %u\n", (unsigned)count,
-            (unsigned)written);
+    fprintf(stderr, "test_capi_c: live count changed between calls: %u then %u\n", (unsigned)count, (unsigned)written);
     goto done;
   }
   for (i = 0; i < count; ++i) {
@@ -154,12 +174,14 @@ int main(void) {
   }
 
   r = sp_simulation_stats(simulation, &stats);
-  if (r != SP_OK) { failed("sp_simulation_stats", r); goto done; }
+  if (r != SP_OK) {
+    failed("sp_simulation_stats", r);
+    goto done;
+  }
   if (stats.steps != 5 || stats.rays_emitted != 500 || stats.indicators < count || stats.casts < stats.rays_emitted) {
-    fprintf(stderr,
-            "test_capi_c: inconsistent stats: steps %llu, rays %llu, casts %llu, indicators %llu, live %u\n",
-            (unsigned long long)stats.steps, (unsigned long long)stats.rays_emitted,
-            (unsigned long long)stats.casts, (unsigned long long)stats.indicators, (unsigned)count);
+    fprintf(stderr, "test_capi_c: inconsistent stats: steps %llu, rays %llu, casts %llu, indicators %llu, live %u\n",
+            (unsigned long long)stats.steps, (unsigned long long)stats.rays_emitted, (unsigned long long)stats.casts,
+            (unsigned long long)stats.indicators, (unsigned)count);
     goto done;
   }
   printf("test_capi_c: %u live indicators, %llu created, %llu casts\n", (unsigned)count,

@@ -27,7 +27,7 @@ std::string last_error() { return sp_last_error_message(); }
 
 // A two-sided quad on the plane z = 1 in front of the source and listener.
 const std::vector<float> kQuad = {
-    -10, -10, 1, 10, -10, 1, 10, 10, 1,  //
+    -10, -10, 1, 10, -10, 1, 10,  10, 1,  //
     -10, -10, 1, 10, 10,  1, -10, 10, 1,  //
 };
 const std::uint32_t kQuadLayers[] = {0, 0};
@@ -215,8 +215,7 @@ TEST_F(CapiHost, RecordCallsRejectMisuse) {
   // Drawing before any simulation was recorded would read garbage.
   EXPECT_EQ(sp_visualizer_record_draw(vis_, cmd, kIdentity, kIdentity, nullptr), SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("record_simulation"), std::string::npos) << last_error();
-  EXPECT_EQ(sp_visualizer_record_draw(vis_, VK_NULL_HANDLE, kIdentity, kIdentity, nullptr),
-            SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(sp_visualizer_record_draw(vis_, VK_NULL_HANDLE, kIdentity, kIdentity, nullptr), SP_ERROR_INVALID_ARGUMENT);
   float nan_view[16];
   std::copy(std::begin(kIdentity), std::end(kIdentity), nan_view);
   nan_view[12] = kNan;

@@ -34,9 +34,10 @@ std::size_t count_files(const std::filesystem::path& dir) {
 
 TEST(Cli, SimulateWritesTheContractCsvAndStats) {
   ScratchDir dir("simulate");
-  auto r = run_command(kCli + " simulate " + kScenes + "/two_rooms.gltf --backend cpu --steps 20 --seed 3 --indicators " +
-                           (dir / "ind.csv").string() + " --stats " + (dir / "stats.json").string(),
-                       dir.path());
+  auto r =
+      run_command(kCli + " simulate " + kScenes + "/two_rooms.gltf --backend cpu --steps 20 --seed 3 --indicators " +
+                      (dir / "ind.csv").string() + " --stats " + (dir / "stats.json").string(),
+                  dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   auto csv = lines(test::read_text(dir / "ind.csv"));
   ASSERT_GE(csv.size(), 2u);
@@ -64,7 +65,8 @@ TEST(Cli, SimulateWritesTheContractCsvAndStats) {
     EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 21) << csv[k];
     std::vector<double> f;
     std::stringstream fields(csv[k]);
-    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell == "hit" || cell == "exit" ? 0.0 : std::stod(cell));
+    for (std::string cell; std::getline(fields, cell, ',');)
+      f.push_back(cell == "hit" || cell == "exit" ? 0.0 : std::stod(cell));
     ASSERT_EQ(f.size(), 22u);
     const double dx = f[18], dy = f[19], dz = f[20], along_normal = dx * f[6] + dy * f[7] + dz * f[8];
     EXPECT_NEAR(dx * dx + dy * dy + dz * dz, 1.0, 1e-5) << csv[k];
@@ -185,8 +187,8 @@ TEST(Cli, UnwritableOutputFailsBeforeSimulating) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("/nonexistent-dir/x.csv"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "s.json"));
-  auto into_dir = run_command(kCli + " simulate " + kScenes + "/closed_room.gltf --steps 1 --stats " + dir.path().string(),
-                              dir.path());
+  auto into_dir = run_command(
+      kCli + " simulate " + kScenes + "/closed_room.gltf --steps 1 --stats " + dir.path().string(), dir.path());
   EXPECT_NE(into_dir.status, 0);
   EXPECT_NE(into_dir.err.find("directory"), std::string::npos) << into_dir.err;
 }
@@ -204,9 +206,8 @@ TEST(Cli, WithoutAVulkanDeviceGpuFailsAndAutoFallsBackToCpu) {
   EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "gpu.json"));
 
-  auto fallback = run_command(no_driver + kCli + " simulate " + scene + " --steps 2 --stats " +
-                                  (dir / "auto.json").string(),
-                              dir.path());
+  auto fallback = run_command(
+      no_driver + kCli + " simulate " + scene + " --steps 2 --stats " + (dir / "auto.json").string(), dir.path());
   ASSERT_EQ(fallback.status, 0) << fallback.err;
   EXPECT_NE(fallback.err.find("using the CPU backend"), std::string::npos) << fallback.err;
   EXPECT_EQ(nlohmann::json::parse(test::read_text(dir / "auto.json"))["backend"], "cpu");
@@ -216,9 +217,8 @@ TEST(Cli, AutoNeverPicksACpuVulkanDevice) {
   // lavapipe is a CPU behind Vulkan: there the CPU backend is faster, so
   // auto must use it (and say why); on a hardware GPU auto uses the GPU.
   ScratchDir dir("auto");
-  auto r = run_command(kCli + " simulate " + kScenes + "/closed_room.gltf --steps 2 --stats " +
-                           (dir / "s.json").string(),
-                       dir.path());
+  auto r = run_command(
+      kCli + " simulate " + kScenes + "/closed_room.gltf --steps 2 --stats " + (dir / "s.json").string(), dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   auto stats = nlohmann::json::parse(test::read_text(dir / "s.json"));
   if (stats["backend"] == "gpu") {
@@ -261,7 +261,8 @@ std::vector<std::string> finding_codes(const nlohmann::json& report) {
 
 TEST(Cli, CheckFindsNothingOnAClosedBoxRoom) {
   ScratchDir dir("check-closed");
-  auto r = run_command(kCli + " check " + kScenes + "/closed_room.gltf --json " + (dir / "c.json").string(), dir.path());
+  auto r =
+      run_command(kCli + " check " + kScenes + "/closed_room.gltf --json " + (dir / "c.json").string(), dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("no findings"), std::string::npos) << r.out;
   auto report = nlohmann::json::parse(test::read_text(dir / "c.json"));
@@ -289,8 +290,8 @@ TEST(Cli, CheckRejectsBadInputInOneLine) {
   ScratchDir dir("check-bad");
   auto none = run_command(kCli + " check", dir.path());
   EXPECT_EQ(none.status, 2);
-  auto missing = run_command(kCli + " check " + (dir / "nope.gltf").string() + " --json " + (dir / "c.json").string(),
-                             dir.path());
+  auto missing =
+      run_command(kCli + " check " + (dir / "nope.gltf").string() + " --json " + (dir / "c.json").string(), dir.path());
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("nope.gltf"), std::string::npos) << missing.err;
   EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;

@@ -36,7 +36,8 @@ void expect_error(std::string_view json, std::initializer_list<std::string_view>
   EXPECT_EQ(error.message.rfind("test.json: ", 0), 0u) << error.message;
   EXPECT_EQ(error.message.find('\n'), std::string::npos) << error.message;
   for (const std::string_view fragment : fragments) {
-    EXPECT_NE(error.message.find(fragment), std::string::npos) << "missing \"" << fragment << "\" in: " << error.message;
+    EXPECT_NE(error.message.find(fragment), std::string::npos)
+        << "missing \"" << fragment << "\" in: " << error.message;
   }
 }
 
@@ -51,7 +52,7 @@ TEST(ConfigDefaults, EmptyObjectGivesDocumentedDefaults) {
   const Config config = parse_ok(" {\n} ");
   EXPECT_FLOAT_EQ(config.scan_radius, 50.0f);
   EXPECT_EQ(config.ray_budget, 500u);
-  EXPECT_EQ(config.max_indicators, 4000u);  // SPEC 2: ours to choose (config.h says why)
+  EXPECT_EQ(config.max_indicators, 4000u);                    // SPEC 2: ours to choose (config.h says why)
   EXPECT_EQ(config.budget_weighting, BudgetWeighting::Even);  // SPEC 2
   EXPECT_EQ(config.max_bounces, 4u);
   EXPECT_FLOAT_EQ(config.bounce_energy_loss, 0.2f);
@@ -209,8 +210,7 @@ TEST(ConfigErrors, NegativeWhereNonNegativeRequired) {
   expect_error(R"({"air_attenuation": -0.5})", {R"("air_attenuation")", ">= 0"});
   expect_error(R"({"indicator_size": -1})", {R"("indicator_size")", ">= 0"});
   expect_error(R"({"sources": [{"position": [0, 0, 0], "loudness": -1}]})", {R"("sources[0].loudness")", ">= 0"});
-  expect_error(R"({"sources": [{"position": [0, 0, 0], "max_distance": -1}]})",
-               {R"("sources[0].max_distance")"});
+  expect_error(R"({"sources": [{"position": [0, 0, 0], "max_distance": -1}]})", {R"("sources[0].max_distance")"});
   expect_error(R"({"sources": [{"position": [0, 0, 0], "duration": -1}]})", {R"("sources[0].duration")"});
   expect_error(R"({"sources": [{"position": [0, 0, 0], "phase": -0.5}]})", {R"("sources[0].phase")"});
   expect_error(R"({"ray_budget": -1})", {R"("ray_budget")", "[0, 16777216]"});
@@ -295,19 +295,15 @@ TEST(ConfigLoad, DirectoryIsIoError) {
 }
 
 TEST(ConfigLoad, ReadsFileAndNamesItInErrors) {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("soundpaint-test-config-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                     ".json");
-  {
-    std::ofstream(path) << R"({"ray_budget": 77})";
-  }
+  const auto path =
+      std::filesystem::temp_directory_path() /
+      ("soundpaint-test-config-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".json");
+  { std::ofstream(path) << R"({"ray_budget": 77})"; }
   const auto good = sp::load_config(path);
   ASSERT_TRUE(good.ok()) << good.error().message;
   EXPECT_EQ(good.value().ray_budget, 77u);
 
-  {
-    std::ofstream(path) << R"({"ray_budget": -77})";
-  }
+  { std::ofstream(path) << R"({"ray_budget": -77})"; }
   const auto bad = sp::load_config(path);
   std::filesystem::remove(path);
   ASSERT_FALSE(bad.ok());

@@ -302,9 +302,9 @@ Scene l_corridor() {
   Scene scene;
   add_box(scene, {0, -50, 2}, {8, 50, 10}, "block");
   add_box(scene, {-0.3f, -50, -0.3f}, {10.3f, 50, 0}, "walls");  // leg one's outer wall
-  add_box(scene, {10, -50, 0}, {10.3f, 50, 10.3f}, "walls");      // the outer corner's wall
-  add_box(scene, {-0.3f, -50, 0}, {0, 50, 2}, "walls");           // leg one's end
-  add_box(scene, {8, -50, 10}, {10, 50, 10.3f}, "walls");         // leg two's end
+  add_box(scene, {10, -50, 0}, {10.3f, 50, 10.3f}, "walls");     // the outer corner's wall
+  add_box(scene, {-0.3f, -50, 0}, {0, 50, 2}, "walls");          // leg one's end
+  add_box(scene, {8, -50, 10}, {10, 50, 10.3f}, "walls");        // leg two's end
   scene.sources.push_back(test::source_at({6, 0, 0.5f}));
   return scene;
 }
@@ -407,7 +407,8 @@ TEST_P(DiffractionParity, CpuAndGpuAgreeIndicatorForIndicator) {
     const Indicator& g = lists[1][k];
     const bool same = c.kind == g.kind && c.ray_index == g.ray_index && c.iteration == g.iteration &&
                       c.diffractions == g.diffractions && c.bounces == g.bounces &&
-                      std::abs(c.energy - g.energy) <= 1e-5f && glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f;
+                      std::abs(c.energy - g.energy) <= 1e-5f &&
+                      glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f;
     differing += !same;
     turned += c.diffractions > 0u;
   }
@@ -442,7 +443,8 @@ TEST_F(DiffractionMovingParts, BothBackendsFollowTheEdgesAMovedPartUncovers) {
     lists[backend == Backend::Gpu] = before.indicators;
     lists[backend == Backend::Gpu].insert(lists[backend == Backend::Gpu].end(), after.indicators.begin(),
                                           after.indicators.end());
-    wall_turns[backend == Backend::Gpu] = after.stats.layers[walls].diffractions - before.stats.layers[walls].diffractions;
+    wall_turns[backend == Backend::Gpu] =
+        after.stats.layers[walls].diffractions - before.stats.layers[walls].diffractions;
   }
   EXPECT_GT(wall_turns[0], 0u);
   EXPECT_EQ(wall_turns[0], wall_turns[1]);

@@ -48,7 +48,8 @@ SourceDesc source(glm::vec3 position, glm::vec3 colour, const std::string& categ
 // A spot as the simulation would leave it: a direct hit at step 0, at full
 // intensity, on a surface with normal `normal`, in its source's colour
 // (source 0 is red and source 1 blue in every scene here).
-shader::Indicator spot(glm::vec3 position, glm::vec3 normal, glm::vec3 direction, float size, std::uint32_t source = 0) {
+shader::Indicator spot(glm::vec3 position, glm::vec3 normal, glm::vec3 direction, float size,
+                       std::uint32_t source = 0) {
   shader::Indicator ind{};
   ind.position = position;
   ind.normal = normal;
@@ -110,8 +111,8 @@ class Display : public test::GpuTest {
  protected:
   // Draws `indicators` of `world` through the host-side ring, as the CPU
   // backend's are, seen after `steps_run` steps.
-  draw::RgbaImage draw(const World& world, const draw::ViewCamera& camera, const std::vector<shader::Indicator>& indicators,
-                       std::uint64_t steps_run = kFadedIn) {
+  draw::RgbaImage draw(const World& world, const draw::ViewCamera& camera,
+                       const std::vector<shader::Indicator>& indicators, std::uint64_t steps_run = kFadedIn) {
     vk::Context& context = *test::GpuEnvironment::context();
     draw::RenderSettings settings;
     settings.width = kWidth;
@@ -306,8 +307,7 @@ TEST_P(DisplayBothBackends, HiddenCategoriesAreNotDrawnAndTheSimulationIsUnchang
   overrides.position = glm::vec3(0, 9, 4);
   overrides.look_at = glm::vec3(0, 0, 0);
   overrides.yfov_degrees = 70.0f;
-  const draw::ViewCamera view =
-      draw::make_view_camera(std::nullopt, shown_sim->world(), overrides, kWidth, kHeight);
+  const draw::ViewCamera view = draw::make_view_camera(std::nullopt, shown_sim->world(), overrides, kWidth, kHeight);
   draw::Renderer shown_renderer(*test::GpuEnvironment::context(), shown_sim->world(), settings);
   draw::Renderer hidden_renderer(*test::GpuEnvironment::context(), hidden_sim->world(), settings);
   const draw::RgbaImage shown = shown_renderer.render(view, *shown_sim);
@@ -382,7 +382,8 @@ TEST_F(Display, SizeScaleGrowsSpotsAndOpacitySettingsApply) {
   // visible, opacity_scale 0 hides every spot that min_opacity does not.
   Config config;
   shader::Indicator old = one[0];
-  const auto steps_old = static_cast<std::uint64_t>(0.95 * config.indicator_lifetime / config.dt) + 1;  // born at step 0
+  const auto steps_old =
+      static_cast<std::uint64_t>(0.95 * config.indicator_lifetime / config.dt) + 1;  // born at step 0
   auto reddest = [](const draw::RgbaImage& image) {
     int best = 0;
     for (std::uint32_t y = 0; y < image.height; ++y)
@@ -415,7 +416,7 @@ TEST_F(Display, ArrowsPointToHeardSourcesOutOfView) {
   const World world = make_world(scene, arrows_config).value();
   const draw::ViewCamera view = camera(world, {0, 1.6f, 0}, {0, 1.0f, -5.0f}, 60.0f);
   const std::vector<shader::Indicator> spots = {spot({0, 0, 8}, {0, 1, 0}, {0, -1, 0}, 0.5f, 0),
-                                        spot({0, 0, -6}, {0, 1, 0}, {0, -1, 0}, 0.5f, 1)};
+                                                spot({0, 0, -6}, {0, 1, 0}, {0, -1, 0}, 0.5f, 1)};
   const draw::RgbaImage image = draw(world, view, spots);
   // The red arrow (with the category's shape) sits at the bottom edge,
   // centred: the source is straight behind, turn around.

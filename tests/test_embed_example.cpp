@@ -165,7 +165,8 @@ TEST(EmbedExample, GpuBackendDrawsTheIndicatorsTheSimulationPredicts) {
   std::size_t checked = 0, shown = 0;
   for (const Indicator& indicator : live) {
     const Projected p = project(camera, indicator);
-    if (!p.in_front || glm::dot(sp::to_glm(indicator.normal), camera.eye - sp::to_glm(indicator.position)) <= 0.0f) continue;
+    if (!p.in_front || glm::dot(sp::to_glm(indicator.normal), camera.eye - sp::to_glm(indicator.position)) <= 0.0f)
+      continue;
     mark_disc(explained, p);
 
     // Checked: clearly visible ones -- opaque, a few pixels wide, inside
@@ -174,7 +175,8 @@ TEST(EmbedExample, GpuBackendDrawsTheIndicatorsTheSimulationPredicts) {
       continue;
     const float distance = glm::length(sp::to_glm(indicator.position) - camera.eye);
     const glm::vec3 direction = (sp::to_glm(indicator.position) - camera.eye) / distance;
-    if (closest_hit(world.geometry->bvh, camera.eye, direction, 0.0f, distance - 0.05f).triangle != SP_INVALID) continue;
+    if (closest_hit(world.geometry->bvh, camera.eye, direction, 0.0f, distance - 0.05f).triangle != SP_INVALID)
+      continue;
     ++checked;
     const glm::vec3 colour = world.source_colors[indicator.source_id];
     if (shows_colour(*picture, p.x, p.y, colour)) {

@@ -45,8 +45,8 @@ class GpuParity : public test::GpuTest {
       const Indicator& g = *it->second;
       bool same = c.kind == g.kind && c.source_id == g.source_id && c.bounces == g.bounces &&
                   c.penetrations == g.penetrations && std::abs(c.energy - g.energy) <= 1e-4f &&
-                  glm::length(sp::to_glm(c.position) - sp::to_glm(g.position)) <= 1e-4f && std::abs(c.size - g.size) <= 1e-4f &&
-                  c.intensity == g.intensity;
+                  glm::length(sp::to_glm(c.position) - sp::to_glm(g.position)) <= 1e-4f &&
+                  std::abs(c.size - g.size) <= 1e-4f && c.intensity == g.intensity;
       identical += same;
     }
     const double fraction = double(identical) / double(cpu.indicators.size());
@@ -126,7 +126,8 @@ TEST_F(GpuParity, ManySourcesWithProximityWeighting) {
   test::add_closed_room(scene, {-8, 0, -8}, {8, 4, 8}, 0.2f, "concrete");
   test::add_box(scene, {-1, 0, -1}, {1, 2, 1}, "wood");
   for (int k = 0; k < 12; ++k) {
-    SourceDesc s = test::source_at({-7.0f + 1.2f * float(k), 1.0f + 0.1f * float(k % 3), -5.0f + 0.8f * float(k)}, 25.0f);
+    SourceDesc s =
+        test::source_at({-7.0f + 1.2f * float(k), 1.0f + 0.1f * float(k % 3), -5.0f + 0.8f * float(k)}, 25.0f);
     s.interval = 0.05;
     s.duration = 0.02 + 0.005 * k;
     scene.sources.push_back(s);

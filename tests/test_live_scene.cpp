@@ -162,8 +162,7 @@ TEST_P(LiveScene, EmittedSoundPlaysForItsDurationThenEnds) {
   Config config = open_config();
   auto sim = simulator(empty_room(), config);
   // Two steps' worth of sound: steps 0 and 1 emit, step 2 does not.
-  const std::uint32_t id =
-      sim->scene().emit(test::source_at({0.5f, 1.0f, 0.0f}), 2.0 * config.dt - 1e-9).value();
+  const std::uint32_t id = sim->scene().emit(test::source_at({0.5f, 1.0f, 0.0f}), 2.0 * config.dt - 1e-9).value();
   EXPECT_FALSE(run(*sim, 1).empty());
   EXPECT_FALSE(run(*sim, 1).empty());
   EXPECT_TRUE(run(*sim, 1).empty());

@@ -213,10 +213,8 @@ TEST(Matter, SheetIsCrossedOnTheSpotFromEitherSide) {
   // E -= 0.01 * 2 whatever the angle, a hit and an exit at the same point.
   for (bool facing_the_ray : {true, false}) {
     Fixture f;
-    if (facing_the_ray)
-      add_quad(f.scene, {1, -5, -5}, {1, -5, 5}, {1, 5, 5}, {1, 5, -5}, "glass");  // front towards -x
-    else
-      add_quad(f.scene, {1, -5, -5}, {1, 5, -5}, {1, 5, 5}, {1, -5, 5}, "glass");
+    if (facing_the_ray) add_quad(f.scene, {1, -5, -5}, {1, -5, 5}, {1, 5, 5}, {1, 5, -5}, "glass");  // front towards -x
+    else add_quad(f.scene, {1, -5, -5}, {1, 5, -5}, {1, 5, 5}, {1, -5, 5}, "glass");
     f.config.layers["glass"] = {0.0f, 2.0f, 0.01f};
     f.finish();
     for (float degrees : {0.0f, 60.0f}) {
@@ -398,8 +396,8 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
   int exits = 0;
   for (const Indicator& ind : out.indicators) {
     const glm::vec3 off_surface = sp::to_glm(ind.position) + sp::to_glm(ind.normal) * 1e-3f;
-    EXPECT_LT(matter_at(f.solids, off_surface), 0.0f) << "indicator faces matter at " << ind.position.x << ", "
-                                                      << ind.position.y << ", " << ind.position.z;
+    EXPECT_LT(matter_at(f.solids, off_surface), 0.0f)
+        << "indicator faces matter at " << ind.position.x << ", " << ind.position.y << ", " << ind.position.z;
     if (ind.kind != SP_INDICATOR_EXIT) continue;
     // A sheet's exit shares its hit's iteration; a solid's follows its
     // entry hit by one (the matter query).
@@ -413,9 +411,10 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
     const Indicator& from = *entry->second;
     ++exits;
     const double expected = double(from.energy) - matter_loss(f.solids, from.position, ind.position);
-    EXPECT_NEAR(ind.energy, expected, 2e-3) << "exit at " << ind.position.x << ", " << ind.position.y << ", "
-                                            << ind.position.z;
-    EXPECT_NEAR(ind.path_length - from.path_length, glm::distance(sp::to_glm(from.position), sp::to_glm(ind.position)), 1e-4);
+    EXPECT_NEAR(ind.energy, expected, 2e-3)
+        << "exit at " << ind.position.x << ", " << ind.position.y << ", " << ind.position.z;
+    EXPECT_NEAR(ind.path_length - from.path_length, glm::distance(sp::to_glm(from.position), sp::to_glm(ind.position)),
+                1e-4);
   }
   EXPECT_GT(exits, 50);
   // The open mesh: rays that penetrate the floor, or the trim's top down
@@ -427,13 +426,13 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Scenarios, MatterBackends,
-    ::testing::Combine(::testing::Values(Backend::Cpu, Backend::Gpu), ::testing::Range(0, int(std::size(kScenarios)))),
-    [](const ::testing::TestParamInfo<std::tuple<Backend, int>>& param_info) {
-      return std::string(std::get<0>(param_info.param) == Backend::Cpu ? "Cpu_" : "Gpu_") +
-             kScenarios[std::get<1>(param_info.param)].name;
-    });
+INSTANTIATE_TEST_SUITE_P(Scenarios, MatterBackends,
+                         ::testing::Combine(::testing::Values(Backend::Cpu, Backend::Gpu),
+                                            ::testing::Range(0, int(std::size(kScenarios)))),
+                         [](const ::testing::TestParamInfo<std::tuple<Backend, int>>& param_info) {
+                           return std::string(std::get<0>(param_info.param) == Backend::Cpu ? "Cpu_" : "Gpu_") +
+                                  kScenarios[std::get<1>(param_info.param)].name;
+                         });
 
 // The two backends write the same indicators, bit for bit where the shared
 // arithmetic is exact (on lavapipe: everywhere), in the same order.
@@ -464,7 +463,9 @@ TEST_P(MatterParity, CpuAndGpuAgreeIndicatorForIndicator) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, MatterParity, ::testing::Range(0, int(std::size(kScenarios))),
-                         [](const ::testing::TestParamInfo<int>& param_info) { return kScenarios[param_info.param].name; });
+                         [](const ::testing::TestParamInfo<int>& param_info) {
+                           return kScenarios[param_info.param].name;
+                         });
 
 }  // namespace
 }  // namespace sp

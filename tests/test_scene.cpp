@@ -515,7 +515,7 @@ TEST(BundledScenes, PlaceSourcesAndListenersAsGenerated) {
   EXPECT_GT(two->sources[0].position.x, 0.05f);  // room B, beyond the divider at |x| <= 0.05
   ASSERT_TRUE(two->camera.has_value());
   EXPECT_LT(two->camera->position().x, -0.05f);  // room A
-  EXPECT_GT(-two->camera->world[2][0], 0.5f);     // looking towards +x, the divider
+  EXPECT_GT(-two->camera->world[2][0], 0.5f);    // looking towards +x, the divider
   EXPECT_NEAR(glm::length(glm::vec3(sp::to_glm(two->camera->world)[0])), 1.0f, 1e-5f);
 
   // The paper's benchmark: 15 sources, each sounding 0.1 s every 0.25 s.

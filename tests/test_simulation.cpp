@@ -84,8 +84,8 @@ TEST(StepPlan, ProximitySplitIsProportionalToOneMinusDistanceOverRange) {
 TEST(StepPlan, RegistryAppliesPatternRadiusAndWeighting) {
   Scene scene = closed_room();
   scene.sources.clear();
-  SourceDesc near = test::source_at({1, 1.5f, 0}, 10.0f);   // d_ls 1 -> weight 0.9
-  SourceDesc far = test::source_at({-2, 1.5f, 0}, 10.0f);   // d_ls 2 -> weight 0.8
+  SourceDesc near = test::source_at({1, 1.5f, 0}, 10.0f);  // d_ls 1 -> weight 0.9
+  SourceDesc far = test::source_at({-2, 1.5f, 0}, 10.0f);  // d_ls 2 -> weight 0.8
   SourceDesc pulsed = test::source_at({0, 1.5f, 1}, 10.0f);
   // binary fractions, so the pattern's arithmetic is exact
   pulsed.interval = 0.25;
@@ -125,7 +125,8 @@ TEST(Simulation, SameSeedSameIndicatorsWhateverTheThreadCount) {
   config.max_wall_thickness = 0.5f;
   auto key = [](const SimRun& run) {
     std::vector<std::tuple<std::uint32_t, std::uint32_t, float, float, float, float>> k;
-    for (const auto& i : run.indicators) k.emplace_back(i.step, i.ray_index, i.position.x, i.position.y, i.position.z, i.energy);
+    for (const auto& i : run.indicators)
+      k.emplace_back(i.step, i.ray_index, i.position.x, i.position.y, i.position.z, i.energy);
     return k;
   };
   SimRun one = simulate(closed_room(), config, 4, 1);
@@ -164,7 +165,8 @@ TEST(Random, EmissionDirectionsAreUnitAndUniform) {
 TEST(Random, DecisionsAreUniformAndKeyedByAllInputs) {
   int below_third = 0;
   const int n = 60000;
-  for (int i = 0; i < n; ++i) below_third += shader::sp_decision_random(1u, 2u, static_cast<std::uint32_t>(i), 0u) < 1.0f / 3.0f;
+  for (int i = 0; i < n; ++i)
+    below_third += shader::sp_decision_random(1u, 2u, static_cast<std::uint32_t>(i), 0u) < 1.0f / 3.0f;
   EXPECT_NEAR(below_third, n / 3, 5 * std::sqrt(n * 2.0 / 9.0));
   float base = shader::sp_decision_random(1u, 2u, 3u, 4u);
   EXPECT_NE(base, shader::sp_decision_random(2u, 2u, 3u, 4u));
@@ -211,7 +213,7 @@ TEST(Simulation, RingAdmitsDirectSoundFirstThenTheMostEnergetic) {
   // so its share goes to reflections: both direct hits, however faint,
   // then the two strongest reflections.
   std::vector<shader::Indicator> step = {spot(0, 0.9f, false), spot(1, 0.05f, true), spot(2, 0.2f, false),
-                                 spot(3, 0.7f, false),  spot(4, 0.1f, true),  spot(5, 0.3f, false)};
+                                         spot(3, 0.7f, false), spot(4, 0.1f, true),  spot(5, 0.3f, false)};
   auto admitted = admit(step, 4, 1.0f);
   std::set<std::uint32_t> rays;
   for (const shader::Indicator& ind : admitted) rays.insert(ind.ray_index);
@@ -257,7 +259,7 @@ TEST(Simulation, RingQuotaTurnsTheRingOverOncePerLifetime) {
   config.indicator_lifetime = 1.0f;
   config.dt = 1.0 / 60.0;
   EXPECT_EQ(ring_quota(config), 334u);  // ceil(20000 / 60)
-  config.indicator_lifetime = 0.1f;  // shown for 1/3 s at least: ceil(20000 / 20)
+  config.indicator_lifetime = 0.1f;     // shown for 1/3 s at least: ceil(20000 / 20)
   EXPECT_EQ(ring_quota(config), 1000u);
   config.max_indicators = 50;
   config.indicator_lifetime = 100.0f;

@@ -70,7 +70,8 @@ TEST(SoundScene, RemovedSourcesAreNotPlannedAndSplitNoBudget) {
 
 TEST(SoundScene, CapacityIsEnforcedWithLimitExceeded) {
   SoundScene scene(room_world(0));
-  for (std::uint32_t i = 0; i < scene.source_capacity(); ++i) ASSERT_TRUE(scene.add_source(test::source_at({0, 1, 0})).ok());
+  for (std::uint32_t i = 0; i < scene.source_capacity(); ++i)
+    ASSERT_TRUE(scene.add_source(test::source_at({0, 1, 0})).ok());
   Result<std::uint32_t> one_more = scene.add_source(test::source_at({0, 1, 0}));
   ASSERT_FALSE(one_more.ok());
   EXPECT_EQ(one_more.error().code, ErrorCode::LimitExceeded);

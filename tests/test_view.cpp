@@ -32,12 +32,12 @@ std::string under_xvfb(const std::string& args) {
   return "SOUNDPAINT_VALIDATION=1 xvfb-run -a -s '-screen 0 1024x768x24' " + kCli + " view " + args;
 }
 
-#define SKIP_WITHOUT_XVFB()                                                               \
-  do {                                                                                    \
-    if (!have_xvfb()) {                                                                   \
+#define SKIP_WITHOUT_XVFB()                                                                            \
+  do {                                                                                                 \
+    if (!have_xvfb()) {                                                                                \
       if (test::ci_requires_vulkan()) FAIL() << "xvfb-run is missing on CI (scripts/install-deps.sh)"; \
-      GTEST_SKIP() << "xvfb-run is not installed";                                        \
-    }                                                                                     \
+      GTEST_SKIP() << "xvfb-run is not installed";                                                     \
+    }                                                                                                  \
   } while (0)
 
 class ViewBackends : public ::testing::TestWithParam<const char*> {};
@@ -52,9 +52,9 @@ TEST_P(ViewBackends, ScriptedRunShowsTheIndicatorsWithoutValidationMessages) {
   auto sound = run_command(under_xvfb(common + " --screenshot " + (dir / "sound.png").string()), dir.path());
   ASSERT_EQ(sound.status, 0) << sound.err;
   EXPECT_EQ(sound.err.find("alidation"), std::string::npos) << sound.err;
-  auto silent = run_command(
-      under_xvfb(common + " --config " + (dir / "silent.json").string() + " --screenshot " + (dir / "silent.png").string()),
-      dir.path());
+  auto silent = run_command(under_xvfb(common + " --config " + (dir / "silent.json").string() + " --screenshot " +
+                                       (dir / "silent.png").string()),
+                            dir.path());
   ASSERT_EQ(silent.status, 0) << silent.err;
   const auto with_sound = test::load_png(dir / "sound.png");
   const auto without = test::load_png(dir / "silent.png");
@@ -66,10 +66,10 @@ TEST_P(ViewBackends, ScriptedRunShowsTheIndicatorsWithoutValidationMessages) {
   EXPECT_GT(spots, 400u);
   EXPECT_LT(spots, std::size_t{480} * 320 / 2);
   // The panel, shown by default, covers a good part of the top left.
-  auto panel = run_command(under_xvfb(kScene + " --backend " + GetParam() +
-                                      " --width 480 --height 320 --frames 90 --config " + (dir / "silent.json").string() +
-                                      " --screenshot " + (dir / "panel.png").string()),
-                           dir.path());
+  auto panel =
+      run_command(under_xvfb(kScene + " --backend " + GetParam() + " --width 480 --height 320 --frames 90 --config " +
+                             (dir / "silent.json").string() + " --screenshot " + (dir / "panel.png").string()),
+                  dir.path());
   ASSERT_EQ(panel.status, 0) << panel.err;
   const auto with_panel = test::load_png(dir / "panel.png");
   ASSERT_TRUE(with_panel);
@@ -77,7 +77,9 @@ TEST_P(ViewBackends, ScriptedRunShowsTheIndicatorsWithoutValidationMessages) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ViewBackends, ::testing::Values("cpu", "gpu"),
-                         [](const ::testing::TestParamInfo<const char*>& param_info) { return std::string(param_info.param); });
+                         [](const ::testing::TestParamInfo<const char*>& param_info) {
+                           return std::string(param_info.param);
+                         });
 
 TEST(View, AResizedWindowGetsANewSwapchainAndKeepsDrawing) {
   // The window grows at frame 10 (no window manager under Xvfb: the X
@@ -85,9 +87,10 @@ TEST(View, AResizedWindowGetsANewSwapchainAndKeepsDrawing) {
   // panel's framebuffers follow, and the last frame has the new size.
   SKIP_WITHOUT_XVFB();
   ScratchDir dir("view-resize");
-  auto r = run_command(under_xvfb(kScene + " --backend gpu --width 320 --height 240 --frames 30 --resize-at 10,400,300" +
-                                  " --screenshot " + (dir / "resized.png").string()),
-                       dir.path());
+  auto r =
+      run_command(under_xvfb(kScene + " --backend gpu --width 320 --height 240 --frames 30 --resize-at 10,400,300" +
+                             " --screenshot " + (dir / "resized.png").string()),
+                  dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("alidation"), std::string::npos) << r.err;
   const auto picture = test::load_png(dir / "resized.png");
@@ -107,8 +110,9 @@ TEST(View, AConfigFileSavedWhileRunningIsReloaded) {
   const auto log = dir / "viewer.err";
   std::ofstream(config) << R"({"ray_budget": 0})";
   std::ofstream(dir / "loud.json") << R"({"ray_budget": 100})";
-  const std::string viewer = under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 300 --no-panel --config " +
-                                        config.string() + " --screenshot " + (dir / "reloaded.png").string());
+  const std::string viewer =
+      under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 300 --no-panel --config " +
+                 config.string() + " --screenshot " + (dir / "reloaded.png").string());
   // At most 30 s of waiting, so a viewer that fails early cannot hang the test.
   const std::string save_when_watched = "(for i in $(seq 600); do grep -q watching " + log.string() +
                                         " 2>/dev/null && break; sleep 0.05; done; cp " + (dir / "loud.json").string() +
@@ -120,9 +124,10 @@ TEST(View, AConfigFileSavedWhileRunningIsReloaded) {
   EXPECT_NE(r.err.find("reloaded"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("alidation"), std::string::npos) << r.err;
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 0})";
-  auto silent = run_command(under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 10 --no-panel --config " +
-                                       config.string() + " --screenshot " + (dir / "silent.png").string()),
-                            dir.path());
+  auto silent =
+      run_command(under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 10 --no-panel --config " +
+                             config.string() + " --screenshot " + (dir / "silent.png").string()),
+                  dir.path());
   ASSERT_EQ(silent.status, 0) << silent.err;
   const auto reloaded = test::load_png(dir / "reloaded.png");
   const auto without = test::load_png(dir / "silent.png");

@@ -521,17 +521,22 @@ TEST_F(VkTest, BorrowedObjectsAreCreatedAndFreedThroughTheHostsAllocator) {
   served("a shader module", [&] { return sp::vk::create_shader_module(c, sp_spirv_test_fill_comp, "fill"); });
   const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
                                              nullptr};
-  served("a descriptor set layout", [&] { return sp::vk::create_descriptor_set_layout(c, {&binding, 1}, "layout"); },
-         false);
+  served(
+      "a descriptor set layout",
+      [&] {
+        return sp::vk::create_descriptor_set_layout(c, {&binding, 1}, "layout");
+      },
+      false);
   served("a descriptor pool",
          [&] { return sp::vk::create_descriptor_pool(c, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, 1, "pool"); });
-  served("a pipeline layout",
-         [&] { return sp::vk::create_pipeline_layout(c, {}, VK_SHADER_STAGE_COMPUTE_BIT, 16, "pipeline layout"); },
-         false);
+  served(
+      "a pipeline layout",
+      [&] { return sp::vk::create_pipeline_layout(c, {}, VK_SHADER_STAGE_COMPUTE_BIT, 16, "pipeline layout"); }, false);
   served("a command pool", [&] { return sp::vk::create_command_pool(c, c.queue_family(), 0, "commands"); });
   served("a fence", [&] { return sp::vk::create_fence(c, "fence"); });
   served("a timestamp pool", [&] { return sp::vk::create_timestamp_pool(c, 4, "timestamps"); });
-  served("a buffer", [&] { return Buffer(c, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::DeviceLocal, "buffer"); });
+  served("a buffer",
+         [&] { return Buffer(c, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::DeviceLocal, "buffer"); });
   served("storage bindings and a compute pipeline", [&] { return std::make_unique<FillKernel>(c); });
 }
 
@@ -551,8 +556,7 @@ TEST(SubgroupSupport, NamesEachMissingStageAndOperation) {
 
   VkPhysicalDeviceSubgroupProperties basic_only = subgroup;
   basic_only.supportedOperations = VK_SUBGROUP_FEATURE_BASIC_BIT;
-  EXPECT_EQ(sp::vk::missing_subgroup_support(basic_only),
-            " ballot subgroup operations arithmetic subgroup operations");
+  EXPECT_EQ(sp::vk::missing_subgroup_support(basic_only), " ballot subgroup operations arithmetic subgroup operations");
 
   const VkPhysicalDeviceSubgroupProperties none{};
   const std::string missing = sp::vk::missing_subgroup_support(none);

@@ -82,7 +82,7 @@ void run(const Options& options, ValidationLog* log) {
   const std::unique_ptr<sp::Visualizer> visualizer =
       sp::Visualizer::create(host_vulkan, draw_target, std::move(world), settings).value();
   visualizer->set_scene_depth(std::array{target.depth_view()}).value();  // spots clipped to the scene's surfaces
-  const sp::DrawOptions draw_options{.viewport_width = target.width(), .viewport_height = target.height(), .scene_depth = 0};
+  const sp::DrawOptions spots{.viewport_width = target.width(), .viewport_height = target.height(), .scene_depth = 0};
   // <<< soundpaint
   // Declared after the visualizer so that it is destroyed first, waiting for
   // the frames in flight that use the visualizer's buffers.
@@ -100,7 +100,7 @@ void run(const Options& options, ValidationLog* log) {
     scene_renderer.draw(cmd, camera.projection * camera.view);
     // >>> soundpaint
     target.begin_overlays(cmd);
-    if (simulate) visualizer->record_draw(cmd, camera.view, camera.projection, draw_options).value();
+    if (simulate) visualizer->record_draw(cmd, camera.view, camera.projection, spots).value();
     // <<< soundpaint
     target.end(cmd);
     if (frame + 1 == frame_count) target.record_readback(cmd);

@@ -154,9 +154,9 @@ void OffscreenTarget::begin_overlays(VkCommandBuffer cmd) const {
   // RAW: the scene's depth writes land before the overlays test and sample it.
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  VkImageMemoryBarrier2 to_read = layout_change(depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT,
-                                                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                                VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+  VkImageMemoryBarrier2 to_read =
+      layout_change(depth_.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
   to_read.srcStageMask = depth_stages;
   to_read.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   to_read.dstStageMask = depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;

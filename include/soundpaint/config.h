@@ -32,17 +32,17 @@ struct LayerProperties {
 // A sound source (docs/model.md#registry). It plays at time t when t >= phase
 // and fmod(t - phase, interval) < duration; the defaults make it play always.
 struct SourceDesc {
-  std::string name;                    // node name for scene sources, "" otherwise
-  Vec3 position;                       // metres, world space
+  std::string name;  // node name for scene sources, "" otherwise
+  Vec3 position;     // metres, world space
   // Linear RGB, each in [0, 1]; empty: its category's colour in the display
   // palette (docs/model.md#indicators, include/soundpaint/display.h).
   std::optional<Vec3> color;
-  std::string category = "sound";      // free text, e.g. "footsteps"
-  float max_distance = 30.0f;          // D_max == R_max, metres, >= 0
-  float loudness = 1.0f;               // E0, initial ray energy, >= 0
-  double duration = 1.0;               // seconds of sound per interval, >= 0
-  double interval = 1.0;               // seconds between sound starts, > 0
-  double phase = 0.0;                  // seconds before the first start, >= 0
+  std::string category = "sound";  // free text, e.g. "footsteps"
+  float max_distance = 30.0f;      // D_max == R_max, metres, >= 0
+  float loudness = 1.0f;           // E0, initial ray energy, >= 0
+  double duration = 1.0;           // seconds of sound per interval, >= 0
+  double interval = 1.0;           // seconds between sound starts, > 0
+  double phase = 0.0;              // seconds before the first start, >= 0
 };
 
 enum class BudgetWeighting { Even, Proximity };
@@ -68,23 +68,23 @@ inline float diffraction_reach(const DiffractionSettings& d) {
 }
 
 struct Config {
-  float scan_radius = 50.0f;                 // R_scan, metres
-  std::uint32_t ray_budget = 500;            // new rays per step, all sources together
+  float scan_radius = 50.0f;       // R_scan, metres
+  std::uint32_t ray_budget = 500;  // new rays per step, all sources together
   // Ring-buffer capacity, > 0. Not the paper's prototype's 20,000: the ring
   // admits capacity * dt / lifetime spots a step, the most informative first,
   // and 4,000 (67 a step at 60 Hz) keeps the strongest, which cluster where
   // each sound is, rather than carpeting every wall (docs/accessibility.md).
   std::uint32_t max_indicators = 4000;
   BudgetWeighting budget_weighting = BudgetWeighting::Even;
-  std::uint32_t max_bounces = 4;             // interactions before a ray dies, <= 64
-  float bounce_energy_loss = 0.2f;           // e_loss in [0, 1]
-  float max_wall_thickness = 0.5f;           // W_max, metres, > 0
-  float min_energy = 0.05f;                  // tau_min
-  float air_attenuation = 0.02f;             // alpha_air, energy per metre
-  float indicator_size = 0.25f;              // metres at E == E0
-  float indicator_lifetime = 1.0f;           // seconds, > 0
-  double dt = 1.0 / 60.0;                    // seconds per step, > 0
-  std::uint32_t seed = 1;                    // random stream seed
+  std::uint32_t max_bounces = 4;                  // interactions before a ray dies, <= 64
+  float bounce_energy_loss = 0.2f;                // e_loss in [0, 1]
+  float max_wall_thickness = 0.5f;                // W_max, metres, > 0
+  float min_energy = 0.05f;                       // tau_min
+  float air_attenuation = 0.02f;                  // alpha_air, energy per metre
+  float indicator_size = 0.25f;                   // metres at E == E0
+  float indicator_lifetime = 1.0f;                // seconds, > 0
+  double dt = 1.0 / 60.0;                         // seconds per step, > 0
+  std::uint32_t seed = 1;                         // random stream seed
   std::map<std::string, LayerProperties> layers;  // overrides of presets, by layer name
   std::optional<Vec3> listener_position;          // overrides the scene's camera
   std::vector<SourceDesc> sources;                // added after the scene's sources

@@ -24,13 +24,13 @@ enum class Shape : std::uint32_t {
   Disc = 0,
   Ring = 1,
   Diamond = 2,
-  Cross = 3,    // a diagonal cross, x
-  Plus = 4,     // an upright cross, +
+  Cross = 3,  // a diagonal cross, x
+  Plus = 4,   // an upright cross, +
   Triangle = 5,
   Square = 6,
   Star = 7,
   Hexagon = 8,
-  Clover = 9,   // three small discs
+  Clover = 9,  // three small discs
 };
 inline constexpr std::uint32_t kShapeCount = 10;
 
@@ -50,9 +50,9 @@ std::optional<Palette> palette_from_name(std::string_view name);
 // Other categories draw as discs and take the palette entries after the
 // built-ins' in order of first appearance, then cycle.
 struct BuiltinCategory {
-  const char* name;              // "footsteps", "gunfire", ...
+  const char* name;  // "footsteps", "gunfire", ...
   Shape shape;
-  std::uint32_t palette_entry;   // index into every palette (all have more entries than built-ins)
+  std::uint32_t palette_entry;  // index into every palette (all have more entries than built-ins)
 };
 std::span<const BuiltinCategory> builtin_categories();
 
@@ -61,13 +61,13 @@ std::span<const BuiltinCategory> builtin_categories();
 // multiply; min_opacity is an opacity in [0, 1].
 struct DisplaySettings {
   Palette palette = Palette::OkabeIto;
-  std::map<std::string, Shape> shapes;        // category -> shape, over the built-in map
-  bool direction = true;                      // spots elongated along the ray's direction
-  bool outline = true;                        // a two-tone halo: >= 3:1 contrast on any surface
-  float size_scale = 1.0f;                    // > 0
-  float opacity_scale = 1.0f;                 // >= 0
-  float min_opacity = 0.0f;                   // in [0, 1]: live spots are never fainter
-  std::vector<std::string> hide_categories;   // not drawn (e.g. the player's own footsteps)
+  std::map<std::string, Shape> shapes;            // category -> shape, over the built-in map
+  bool direction = true;                          // spots elongated along the ray's direction
+  bool outline = true;                            // a two-tone halo: >= 3:1 contrast on any surface
+  float size_scale = 1.0f;                        // > 0
+  float opacity_scale = 1.0f;                     // >= 0
+  float min_opacity = 0.0f;                       // in [0, 1]: live spots are never fainter
+  std::vector<std::string> hide_categories;       // not drawn (e.g. the player's own footsteps)
   std::optional<std::uint32_t> max_per_category;  // at most this many drawn per category, most energetic first
   // An arrow at the screen's edge for each source heard but out of view.
   // Empty: the front end decides (render and the viewer: on; the embedded

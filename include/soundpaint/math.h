@@ -16,7 +16,8 @@ concept Vec3Shaped = requires(const V& v) {
   { v.x } -> std::convertible_to<float>;
   { v.y } -> std::convertible_to<float>;
   { v.z } -> std::convertible_to<float>;
-} && !requires(const V& v) { v.w; };
+}
+&&!requires(const V& v) { v.w; };
 
 // A 4x4 float matrix indexed m[column][row], as GLSL and glm index them
 // (16 floats in size: a container of vectors is not one).
@@ -33,12 +34,11 @@ struct Vec3 {
   constexpr Vec3() = default;
   constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
   template <Vec3Shaped V>
-    requires(!std::same_as<V, Vec3>)
-  constexpr Vec3(const V& v) : x(static_cast<float>(v.x)), y(static_cast<float>(v.y)), z(static_cast<float>(v.z)) {}
+  requires(!std::same_as<V, Vec3>) constexpr Vec3(const V& v)
+      : x(static_cast<float>(v.x)), y(static_cast<float>(v.y)), z(static_cast<float>(v.z)) {}
 
   template <Vec3Shaped V>
-    requires(!std::same_as<V, Vec3> && std::constructible_from<V, float, float, float>)
-  constexpr operator V() const {
+  requires(!std::same_as<V, Vec3> && std::constructible_from<V, float, float, float>) constexpr operator V() const {
     return V(x, y, z);
   }
 
@@ -55,16 +55,14 @@ struct Mat4 {
 
   constexpr Mat4() = default;
   template <Mat4Shaped M>
-    requires(!std::same_as<M, Mat4>)
-  constexpr Mat4(const M& m) {
+  requires(!std::same_as<M, Mat4>) constexpr Mat4(const M& m) {
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) columns[c][r] = static_cast<float>(m[c][r]);
     }
   }
 
   template <Mat4Shaped M>
-    requires(!std::same_as<M, Mat4> && std::default_initializable<M>)
-  constexpr operator M() const {
+  requires(!std::same_as<M, Mat4> && std::default_initializable<M>) constexpr operator M() const {
     M m{};
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) m[c][r] = columns[c][r];

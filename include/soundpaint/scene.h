@@ -18,11 +18,11 @@ namespace sp {
 // A perspective camera placed by a node's world transform; looks down -Z of
 // that transform, +Y up (glTF convention).
 struct Camera {
-  Mat4 world;                // node's world matrix (rotation + translation)
-  float yfov = 0.8f;         // vertical field of view, radians
-  float znear = 0.05f;       // metres
-  float zfar = 1000.0f;      // metres
-  float aspect_ratio = 0.0f; // 0: take it from the image
+  Mat4 world;                 // node's world matrix (rotation + translation)
+  float yfov = 0.8f;          // vertical field of view, radians
+  float znear = 0.05f;        // metres
+  float zfar = 1000.0f;       // metres
+  float aspect_ratio = 0.0f;  // 0: take it from the image
   Vec3 position() const { return world.translation(); }
 };
 
@@ -30,12 +30,12 @@ struct Camera {
 inline constexpr std::uint32_t kStaticInstance = 0xFFFFFFFFu;
 
 struct Scene {
-  std::filesystem::path path;               // where it was loaded from, if from a file
-  std::vector<Vec3> vertices;               // 3 per triangle, world space, metres
+  std::filesystem::path path;                  // where it was loaded from, if from a file
+  std::vector<Vec3> vertices;                  // 3 per triangle, world space, metres
   std::vector<std::uint32_t> triangle_layers;  // per triangle, index into layer_names
-  std::vector<std::string> layer_names;     // distinct layer names, in first-use order
-  std::vector<SourceDesc> sources;          // in node order (depth-first over the default scene)
-  std::optional<Camera> camera;             // the first camera node: listener and render camera
+  std::vector<std::string> layer_names;        // distinct layer names, in first-use order
+  std::vector<SourceDesc> sources;             // in node order (depth-first over the default scene)
+  std::optional<Camera> camera;                // the first camera node: listener and render camera
   // Moving parts (doors, lifts): per triangle, an index into instance_names
   // or kStaticInstance; empty when nothing moves. A simulation places an
   // instance's triangles with SoundScene::set_instance_transform, relative

@@ -25,12 +25,12 @@ inline constexpr std::uint32_t kIndicatorExit = 1;  // a ray left matter it had 
 struct Indicator {
   Vec3 position;
   float energy = 0.0f;
-  Vec3 normal;                // facing the side the ray came from (hit) or leaves to (exit)
-  float size = 0.0f;          // metres: indicator_size * E / E0
-  Vec3 color;                 // linear RGB
+  Vec3 normal;        // facing the side the ray came from (hit) or leaves to (exit)
+  float size = 0.0f;  // metres: indicator_size * E / E0
+  Vec3 color;         // linear RGB
   float intensity = 0.0f;
-  Vec3 dir;                   // the ray's direction of travel: incoming (hit), outgoing (exit)
-  float path_length = 0.0f;   // metres from the source
+  Vec3 dir;                  // the ray's direction of travel: incoming (hit), outgoing (exit)
+  float path_length = 0.0f;  // metres from the source
   std::uint32_t kind = kIndicatorHit;
   std::uint32_t source_id = 0;
   std::uint32_t bounces = 0;
@@ -44,9 +44,9 @@ struct Indicator {
 // How make_world builds its BVH (binned SAH).
 inline constexpr std::uint32_t kBvhMaxDepth = 32;  // the traversal stack's depth
 struct BvhBuildSettings {
-  std::uint32_t bins = 16;            // SAH bins per axis and split
-  std::uint32_t max_leaf_size = 4;    // leaves never hold more unless the depth cap forces it
-  float traversal_cost = 1.0f;        // SAH cost of visiting a node, relative to one triangle test
+  std::uint32_t bins = 16;                 // SAH bins per axis and split
+  std::uint32_t max_leaf_size = 4;         // leaves never hold more unless the depth cap forces it
+  float traversal_cost = 1.0f;             // SAH cost of visiting a node, relative to one triangle test
   std::uint32_t max_depth = kBvhMaxDepth;  // levels including the root; <= kBvhMaxDepth
   // Threads the build may use: 0 means std::thread::hardware_concurrency(),
   // 1 builds on the calling thread only. Subtrees near the root are built
@@ -57,8 +57,8 @@ struct BvhBuildSettings {
 
 struct BvhChanges;  // src/bvh/bvh.h
 namespace detail {
-struct WorldGeometry;        // src/sim/world_geometry.h
-struct SoundSceneBackend;    // src/sim/sound_scene_backend.h
+struct WorldGeometry;      // src/sim/world_geometry.h
+struct SoundSceneBackend;  // src/sim/sound_scene_backend.h
 }  // namespace detail
 
 // The geometry a backend traces (the BVH, the rest pose of moving parts and
@@ -90,7 +90,7 @@ struct World {
   std::vector<std::string> layer_names;
   std::vector<LayerProperties> layer_properties;  // per layer id
   std::vector<std::uint32_t> layer_triangle_counts;
-  std::vector<SourceDesc> sources;                // source id == index
+  std::vector<SourceDesc> sources;  // source id == index
   // Per source id: its category's index in category_names (built-in
   // categories first, then others in order of first appearance), and the
   // colour its indicators carry: its own, else its category's palette
@@ -119,7 +119,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
 
 // Counters of one layer (--stats; contract: README.md, "Command line").
 struct LayerCounters {
-  std::uint64_t hits = 0;             // every surface hit on this layer
+  std::uint64_t hits = 0;  // every surface hit on this layer
   std::uint64_t reflections = 0;
   std::uint64_t penetrations = 0;     // every decision to penetrate (backcast misses included)
   std::uint64_t backcast_misses = 0;  // penetrations that found no way out of matter within W_max
@@ -135,11 +135,11 @@ struct LayerCounters {
 // Totals over every step run so far.
 struct SimulationStats {
   std::uint64_t steps = 0;
-  std::uint64_t casts = 0;             // forward casts + backcasts
+  std::uint64_t casts = 0;  // forward casts + backcasts
   std::uint64_t max_casts_per_step = 0;
   std::uint64_t rays_emitted = 0;
-  std::uint64_t indicators = 0;        // every indicator created
-  std::vector<LayerCounters> layers;   // per layer id
+  std::uint64_t indicators = 0;       // every indicator created
+  std::vector<LayerCounters> layers;  // per layer id
 };
 
 // Sources a SoundScene holds unless the world starts with more: one GPU

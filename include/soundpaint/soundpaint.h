@@ -69,9 +69,9 @@ typedef enum sp_result {
 } sp_result;
 
 typedef enum sp_backend {
-  SP_BACKEND_CPU = 0,  /* multithreaded CPU backend; always available */
-  SP_BACKEND_GPU = 1,  /* Vulkan compute backend; any Vulkan device, fails with SP_ERROR_VULKAN if none */
-  SP_BACKEND_AUTO = 2  /* the GPU backend on a real GPU, else the CPU backend */
+  SP_BACKEND_CPU = 0, /* multithreaded CPU backend; always available */
+  SP_BACKEND_GPU = 1, /* Vulkan compute backend; any Vulkan device, fails with SP_ERROR_VULKAN if none */
+  SP_BACKEND_AUTO = 2 /* the GPU backend on a real GPU, else the CPU backend */
 } sp_backend;
 
 /* Indicator kinds (sp_indicator.kind). */
@@ -97,19 +97,19 @@ typedef struct sp_sound_scene sp_sound_scene;
 
 /* One visible sound indicator: where a ray hit (or left) a surface. */
 typedef struct sp_indicator {
-  float position[3];   /* metres, world space */
-  float normal[3];     /* unit; faces the side the ray came from (hit) or leaves to (exit) */
-  float energy;        /* remaining ray energy, units of E0 */
-  float size;          /* metres: indicator_size * energy / loudness */
-  float color[3];      /* the source's linear RGB, each in [0, 1] */
-  float intensity;     /* 1 - listener distance / max_distance of the source at emission, [0, 1] */
-  uint32_t kind;       /* SP_INDICATOR_KIND_* */
-  uint32_t source_id;  /* id of the source (scene sources first, then config sources, then added ones) */
-  uint32_t bounces;    /* reflections before this indicator */
+  float position[3];     /* metres, world space */
+  float normal[3];       /* unit; faces the side the ray came from (hit) or leaves to (exit) */
+  float energy;          /* remaining ray energy, units of E0 */
+  float size;            /* metres: indicator_size * energy / loudness */
+  float color[3];        /* the source's linear RGB, each in [0, 1] */
+  float intensity;       /* 1 - listener distance / max_distance of the source at emission, [0, 1] */
+  uint32_t kind;         /* SP_INDICATOR_KIND_* */
+  uint32_t source_id;    /* id of the source (scene sources first, then config sources, then added ones) */
+  uint32_t bounces;      /* reflections before this indicator */
   uint32_t penetrations; /* completed penetrations before this indicator */
-  float path_length;   /* metres travelled by the ray from its source */
-  uint32_t step;       /* the step that created it */
-  float direction[3];  /* unit; the ray's direction of travel: incoming (hit), outgoing (exit) */
+  float path_length;     /* metres travelled by the ray from its source */
+  uint32_t step;         /* the step that created it */
+  float direction[3];    /* unit; the ray's direction of travel: incoming (hit), outgoing (exit) */
   uint32_t diffractions; /* times the ray turned at an edge before this indicator */
 } sp_indicator;
 
@@ -322,8 +322,7 @@ sp_result sp_sound_scene_set_listener(sp_sound_scene* scene, float x, float y, f
  * lowest free slot, so ids of removed sources are reused.
  * Errors: SP_ERROR_INVALID_ARGUMENT (bad field), SP_ERROR_LIMIT_EXCEEDED
  * (sp_sound_scene_source_capacity sources are live: remove one first). */
-sp_result sp_sound_scene_add_source(sp_sound_scene* scene, const sp_source_desc* desc,
-                                    uint32_t* out_id) SP_NOEXCEPT;
+sp_result sp_sound_scene_add_source(sp_sound_scene* scene, const sp_source_desc* desc, uint32_t* out_id) SP_NOEXCEPT;
 
 /* Replaces everything about live source `id` with *desc (non-NULL): position,
  * colour, category, range, loudness and emission pattern.
@@ -395,13 +394,13 @@ typedef enum sp_palette {
 #define SP_SHAPE_DISC 0u
 #define SP_SHAPE_RING 1u
 #define SP_SHAPE_DIAMOND 2u
-#define SP_SHAPE_CROSS 3u    /* a diagonal cross, x */
-#define SP_SHAPE_PLUS 4u     /* an upright cross, + */
+#define SP_SHAPE_CROSS 3u /* a diagonal cross, x */
+#define SP_SHAPE_PLUS 4u  /* an upright cross, + */
 #define SP_SHAPE_TRIANGLE 5u
 #define SP_SHAPE_SQUARE 6u
 #define SP_SHAPE_STAR 7u
 #define SP_SHAPE_HEXAGON 8u
-#define SP_SHAPE_CLOVER 9u   /* three small discs */
+#define SP_SHAPE_CLOVER 9u /* three small discs */
 
 /* The display settings. Fill it with sp_display_settings_init first: later
  * versions may add fields that bindings then need not know. Every field is
@@ -443,7 +442,7 @@ typedef struct sp_display_settings {
 void sp_display_settings_init(sp_display_settings* settings) SP_NOEXCEPT;
 
 #ifdef __cplusplus
-}  /* extern "C" */
+} /* extern "C" */
 #endif
 
 #endif /* SOUNDPAINT_SOUNDPAINT_H */

@@ -35,9 +35,9 @@ typedef struct sp_visualizer sp_visualizer;
  * (compute_queue_family). Fill it with sp_host_vulkan_init first: a zeroed
  * struct would name queue family 0 as an async compute family. */
 typedef struct sp_host_vulkan {
-  VkInstance instance;                   /* required */
-  VkPhysicalDevice physical_device;      /* required */
-  VkDevice device;                       /* required */
+  VkInstance instance;              /* required */
+  VkPhysicalDevice physical_device; /* required */
+  VkDevice device;                  /* required */
   /* Family of the queue that runs sp_visualizer_record_draw's command
    * buffers (graphics and compute), and record_simulation's unless
    * compute_queue_family is set. Required. */
@@ -45,7 +45,7 @@ typedef struct sp_host_vulkan {
   /* Family of an async compute queue that runs record_simulation's command
    * buffers; VK_QUEUE_FAMILY_IGNORED (the default): queue_family. */
   uint32_t compute_queue_family;
-  VkPipelineCache pipeline_cache;        /* optional */
+  VkPipelineCache pipeline_cache;         /* optional */
   const VkAllocationCallbacks* allocator; /* optional, used for every object soundpaint creates */
   /* Optional: the pNext chain given to vkCreateDevice, so that features are
    * checked as enabled and not only as supported. */
@@ -54,9 +54,9 @@ typedef struct sp_host_vulkan {
 
 /* The attachments of the host's rendering that record_draw draws into. */
 typedef struct sp_draw_target {
-  VkFormat color_format;   /* required: a blendable colour attachment format */
-  VkFormat depth_format;   /* VK_FORMAT_UNDEFINED (default): no depth attachment, indicators not depth-tested */
-  VkFormat stencil_format; /* the rendering's stencil attachment format, if it has one; default UNDEFINED */
+  VkFormat color_format;         /* required: a blendable colour attachment format */
+  VkFormat depth_format;         /* VK_FORMAT_UNDEFINED (default): no depth attachment, indicators not depth-tested */
+  VkFormat stencil_format;       /* the rendering's stencil attachment format, if it has one; default UNDEFINED */
   VkSampleCountFlagBits samples; /* default VK_SAMPLE_COUNT_1_BIT */
   /* VK_COMPARE_OP_LESS_OR_EQUAL (default) for depth cleared to 1;
    * GREATER_OR_EQUAL for reversed-Z. */
@@ -204,7 +204,7 @@ sp_result sp_visualizer_wait(sp_visualizer* visualizer) SP_NOEXCEPT;
 sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) SP_NOEXCEPT;
 
 #ifdef __cplusplus
-}  /* extern "C" */
+} /* extern "C" */
 #endif
 
 #endif /* SOUNDPAINT_SOUNDPAINT_VULKAN_H */

@@ -35,8 +35,8 @@ struct HostVulkan {
   // are then VK_SHARING_MODE_CONCURRENT, and the host's semaphores order
   // simulation and draw (docs/integrating.md).
   std::uint32_t compute_queue_family = VK_QUEUE_FAMILY_IGNORED;
-  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;     // optional
-  const VkAllocationCallbacks* allocator = nullptr;    // optional, used for every object soundpaint creates
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;   // optional
+  const VkAllocationCallbacks* allocator = nullptr;  // optional, used for every object soundpaint creates
   // Optional: the pNext chain given to vkCreateDevice, so that features are
   // checked as enabled and not only as supported.
   const void* enabled_features = nullptr;
@@ -85,11 +85,11 @@ struct DrawOptions {
 // The simulation's running totals as record_totals writes them: five
 // little-endian 64-bit counts, 40 bytes, no padding.
 struct SimulationTotals {
-  std::uint64_t steps = 0;         // steps whose results reached the ring
-  std::uint64_t casts = 0;         // forward casts and matter queries
+  std::uint64_t steps = 0;  // steps whose results reached the ring
+  std::uint64_t casts = 0;  // forward casts and matter queries
   std::uint64_t rays_emitted = 0;
-  std::uint64_t indicators = 0;    // every indicator created
-  std::uint64_t ring_filled = 0;   // ring slots holding an indicator (drawn while live)
+  std::uint64_t indicators = 0;   // every indicator created
+  std::uint64_t ring_filled = 0;  // ring slots holding an indicator (drawn while live)
 };
 
 // Where the simulation's time went in the newest frame the device has

@@ -103,8 +103,7 @@ SP_INLINE void sp_plan_tiebreak(SP_ADMISSION_ARGS_DECL_MUT uint class_count) {
 SP_INLINE bool sp_admitted(SP_ADMISSION_ARGS_DECL uint bin, uint tiebreak) {
   uint c = bin / SP_ADMISSION_LEVELS;
   uint threshold = admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c];
-  return bin >= threshold ||
-         (bin + 1u == threshold && tiebreak >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]);
+  return bin >= threshold || (bin + 1u == threshold && tiebreak >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]);
 }
 
 // Whether an indicator in bin `bin` is in its class's overflowing bin, the

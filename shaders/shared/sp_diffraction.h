@@ -35,24 +35,23 @@ SP_INLINE vec2 sp_sin_cos(float x) {
   SP_PRECISE float y = x - SP_HALF_PI;
   SP_PRECISE float y2 = y * y;
   SP_PRECISE float s =
-      y * (1.0f + y2 * (-0.16666667f + y2 * (0.0083333333f + y2 * (-0.00019841270f + y2 * (2.7557319e-6f +
-                                                                                        y2 * -2.5052108e-8f)))));
+      y * (1.0f + y2 * (-0.16666667f +
+                        y2 * (0.0083333333f + y2 * (-0.00019841270f + y2 * (2.7557319e-6f + y2 * -2.5052108e-8f)))));
   SP_PRECISE float c =
-      1.0f + y2 * (-0.5f + y2 * (0.041666667f + y2 * (-0.0013888889f + y2 * (2.4801587e-5f + y2 * (-2.7557319e-7f +
-                                                                                            y2 * 2.0876757e-9f)))));
+      1.0f +
+      y2 * (-0.5f + y2 * (0.041666667f +
+                          y2 * (-0.0013888889f + y2 * (2.4801587e-5f + y2 * (-2.7557319e-7f + y2 * 2.0876757e-9f)))));
   return vec2(c, -s);  // sin(y + pi/2) = cos y, cos(y + pi/2) = -sin y
 }
 
-SP_INLINE vec3 sp_triangle_corner(BvhTriangle tri, uint i) {
-  return i == 0u ? tri.v0 : (i == 1u ? tri.v1 : tri.v2);
-}
+SP_INLINE vec3 sp_triangle_corner(BvhTriangle tri, uint i) { return i == 0u ? tri.v0 : (i == 1u ? tri.v1 : tri.v2); }
 
 // The exposed edge of `tri` nearest `position` that diffracts under `p`
 // (its surface turns by at least the edge angle), or SP_INVALID. `front`:
 // the ray struck the front; at the back of a sheet only free boundaries
 // count (every other exposed edge is concave from that side).
-SP_INLINE uint sp_nearest_diffracting_edge(BvhTriangle tri, TriangleEdges edges, vec3 position, bool front,
-                                           SimParams p, SP_OUT(float) distance, SP_OUT(vec3) nearest) {
+SP_INLINE uint sp_nearest_diffracting_edge(BvhTriangle tri, TriangleEdges edges, vec3 position, bool front, SimParams p,
+                                           SP_OUT(float) distance, SP_OUT(vec3) nearest) {
   uint best = SP_INVALID;
   distance = SP_FAR;
   nearest = position;
@@ -87,8 +86,8 @@ SP_INLINE uint sp_nearest_diffracting_edge(BvhTriangle tri, TriangleEdges edges,
 // it was too far from an edge or the draw said no: the caller goes on to
 // reflect or penetrate. Returns 0 with `absorbed` true, the ray dead, when
 // the angle drawn runs into the wedge: that share is lost, never created.
-SP_INLINE uint sp_try_diffract(SP_INOUT(RayState) r, BvhTriangle tri, TriangleEdges edges, vec3 position,
-                               vec3 normal, bool front, SimParams p, uvec4 random, SP_OUT(bool) absorbed) {
+SP_INLINE uint sp_try_diffract(SP_INOUT(RayState) r, BvhTriangle tri, TriangleEdges edges, vec3 position, vec3 normal,
+                               bool front, SimParams p, uvec4 random, SP_OUT(bool) absorbed) {
   absorbed = false;
   float a;
   vec3 q;

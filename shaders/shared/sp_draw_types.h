@@ -41,20 +41,20 @@ struct SceneTriangle {
   vec3 v0;
   uint shading;  // SP_SHADE_*
   vec3 v1;
-  uint layer;    // layer id, or SP_MARKER_LAYER
+  uint layer;  // layer id, or SP_MARKER_LAYER
   vec3 v2;
   uint pad0;
-  vec3 color;    // linear RGB tint
+  vec3 color;  // linear RGB tint
   uint pad1;
 };
 SP_CHECK_LAYOUT(sizeof(SceneTriangle) == 64 && alignof(SceneTriangle) == 4 && offsetof(SceneTriangle, shading) == 12 && offsetof(SceneTriangle, v1) == 16 && offsetof(SceneTriangle, layer) == 28 && offsetof(SceneTriangle, v2) == 32 && offsetof(SceneTriangle, color) == 48);
 
 // Push constants of the scene pass, 96 bytes.
 struct ScenePush {
-  mat4 view_proj;   // world -> Vulkan clip space
-  vec3 eye;         // camera position, world space
-  float ambient;    // light every surface gets, in [0, 1]
-  vec3 light_dir;   // unit vector towards the light
+  mat4 view_proj;      // world -> Vulkan clip space
+  vec3 eye;            // camera position, world space
+  float ambient;       // light every surface gets, in [0, 1]
+  vec3 light_dir;      // unit vector towards the light
   float fog_distance;  // metres at which distant surfaces have faded 63% into the clear colour; 0: no fog
 };
 SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && offsetof(ScenePush, ambient) == 76 && offsetof(ScenePush, light_dir) == 80 && offsetof(ScenePush, fog_distance) == 92);
@@ -68,11 +68,11 @@ SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && off
 
 // Bindings of the indicator pass's descriptor set.
 #define SP_DRAW_BINDING_RING 0
-#define SP_DRAW_BINDING_SOURCES 1       // DisplaySource per source id
-#define SP_DRAW_BINDING_SOURCE_LIVE 2   // per source id: live spots (the prepass)
-#define SP_DRAW_BINDING_CATEGORIES 3    // per category: cap histogram and decision (the prepass)
-#define SP_DRAW_BINDING_VISIBLE 4       // per ring slot: 1 when drawn under the caps (the prepass)
-#define SP_DRAW_BINDING_DRAW_ARGS 5     // the ring's VkDrawIndirectCommand (instance count = filled slots)
+#define SP_DRAW_BINDING_SOURCES 1      // DisplaySource per source id
+#define SP_DRAW_BINDING_SOURCE_LIVE 2  // per source id: live spots (the prepass)
+#define SP_DRAW_BINDING_CATEGORIES 3   // per category: cap histogram and decision (the prepass)
+#define SP_DRAW_BINDING_VISIBLE 4      // per ring slot: 1 when drawn under the caps (the prepass)
+#define SP_DRAW_BINDING_DRAW_ARGS 5    // the ring's VkDrawIndirectCommand (instance count = filled slots)
 #define SP_DRAW_BINDING_COUNT 6
 
 // The halo's two rings, linear RGB: dark against the spot, light outside
@@ -114,20 +114,20 @@ SP_CHECK_LAYOUT(sizeof(DisplaySource) == 32 && offsetof(DisplaySource, category)
 // Push constants of the indicator pass, 128 bytes (Vulkan's guaranteed
 // minimum of maxPushConstantsSize).
 struct IndicatorPush {
-  mat4 view_proj;      // world -> Vulkan clip space
-  vec3 eye;            // camera position: indicators facing away from it are skipped
-  uint current_step;   // the step the picture shows (the last one run)
-  float dt;            // seconds per step
-  float lifetime;      // the display's lifetime: max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME), seconds
-  float pixel_scale;   // pixels per metre at 1 m in front of the eye, |projection[1][1]| * viewport height / 2;
-                       // 0 when the viewport is unknown (no minimum size)
-  float viewport_width;  // pixels; 0 when unknown
-  float size_scale;    // display.size_scale
-  float opacity_scale; // display.opacity_scale
-  float min_opacity;   // display.min_opacity
-  uint flags;          // SP_DRAW_*
-  float depth_a;       // the projection's depth terms, projection[2][2] and [3][2]:
-  float depth_b;       //   view distance = depth_b / (depth + depth_a) for a perspective projection
+  mat4 view_proj;            // world -> Vulkan clip space
+  vec3 eye;                  // camera position: indicators facing away from it are skipped
+  uint current_step;         // the step the picture shows (the last one run)
+  float dt;                  // seconds per step
+  float lifetime;            // the display's lifetime: max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME), seconds
+  float pixel_scale;         // pixels per metre at 1 m in front of the eye, |projection[1][1]| * viewport height / 2;
+                             // 0 when the viewport is unknown (no minimum size)
+  float viewport_width;      // pixels; 0 when unknown
+  float size_scale;          // display.size_scale
+  float opacity_scale;       // display.opacity_scale
+  float min_opacity;         // display.min_opacity
+  uint flags;                // SP_DRAW_*
+  float depth_a;             // the projection's depth terms, projection[2][2] and [3][2]:
+  float depth_b;             //   view distance = depth_b / (depth + depth_a) for a perspective projection
   float inv_indicator_size;  // 1 / indicator_size: size * this = E / E0
   float viewport_height;     // pixels; 0 when unknown
 };
@@ -135,7 +135,7 @@ SP_CHECK_LAYOUT(sizeof(IndicatorPush) == 128 && offsetof(IndicatorPush, eye) == 
 
 // Push constants of the display prepass (display_prepass.comp), 32 bytes.
 struct DisplayPrepassPush {
-  uint phase;           // SP_PREPASS_*
+  uint phase;  // SP_PREPASS_*
   uint current_step;
   float dt;
   float lifetime;       // the display's lifetime, as IndicatorPush.lifetime

@@ -97,12 +97,12 @@ SP_CHECK_LAYOUT(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) =
 // Written by the host before each step's submit.
 struct StepInput {
   SimParams params;
-  uint total_rays;      // rays emitted this step
-  uint source_count;    // entries used in the step's source table
-  uint ring_capacity;   // max_indicators
+  uint total_rays;     // rays emitted this step
+  uint source_count;   // entries used in the step's source table
+  uint ring_capacity;  // max_indicators
   uint layer_count;
-  uint ring_quota;             // indicators the ring admits per step (sp_ring.h)
-  float inv_indicator_size;    // 1 / indicator_size, 0 when it is 0
+  uint ring_quota;           // indicators the ring admits per step (sp_ring.h)
+  float inv_indicator_size;  // 1 / indicator_size, 0 when it is 0
   uint pad0;
   uint pad1;
 };
@@ -118,9 +118,9 @@ SP_CHECK_LAYOUT(sizeof(StepInput) == 96 && sizeof(StepInput) % 16 == 0);
 
 // Push constants of the wavefront kernels.
 struct WavefrontPush {
-  uint queue_in;   // 0 or 1: which queue this iteration consumes
-  uint finish;     // prepare: 1 on the step's last iteration
-  uint max_rays;   // capacity of each queue
+  uint queue_in;  // 0 or 1: which queue this iteration consumes
+  uint finish;    // prepare: 1 on the step's last iteration
+  uint max_rays;  // capacity of each queue
   uint pad0;
 };
 SP_CHECK_LAYOUT(sizeof(WavefrontPush) == 16);

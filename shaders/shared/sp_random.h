@@ -46,9 +46,7 @@ SP_INLINE uvec4 sp_pcg4d(uint a, uint b, uint c, uint d) {
 }
 
 // Maps 32 random bits to [0, 1) exactly (24-bit mantissa, no rounding).
-SP_INLINE float sp_unit_float(uint bits) {
-  return float(bits >> 8u) * (1.0f / 16777216.0f);
-}
+SP_INLINE float sp_unit_float(uint bits) { return float(bits >> 8u) * (1.0f / 16777216.0f); }
 
 // The decision variable u (docs/model.md#propagation) for a ray's interaction
 // `interaction`.

@@ -111,7 +111,8 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
     return outcome | SP_OUTCOME_BACK_FACE;
   }
   vec3 position = sp_offset_point(r.origin, r.dir, found.t);
-  vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal : tri.normal;  // towards the ray's side (a sheet's back is a front too)
+  vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal
+                                              : tri.normal;  // towards the ray's side (a sheet's back is a front too)
   ind = sp_make_indicator(SP_INDICATOR_HIT, r, source, position, normal, p);
   outcome |= SP_OUTCOME_INDICATOR;
   // Diffractions count as interactions: they key the random numbers and

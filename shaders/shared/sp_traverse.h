@@ -53,8 +53,8 @@ SP_INLINE RayQuery sp_make_query(vec3 origin, vec3 dir, float tmin, float tmax) 
   q.tmin = tmin;
   q.tmax = tmax;
   q.inv_dir = vec3(sp_safe_inverse(dir.x), sp_safe_inverse(dir.y), sp_safe_inverse(dir.z));
-  q.parallel_axes = (abs(dir.x) <= 1.0e-20f ? 1u : 0u) | (abs(dir.y) <= 1.0e-20f ? 2u : 0u) |
-                    (abs(dir.z) <= 1.0e-20f ? 4u : 0u);
+  q.parallel_axes =
+      (abs(dir.x) <= 1.0e-20f ? 1u : 0u) | (abs(dir.y) <= 1.0e-20f ? 2u : 0u) | (abs(dir.z) <= 1.0e-20f ? 4u : 0u);
   vec3 a = abs(dir);
   int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
   int kx = (kz + 1) % 3;

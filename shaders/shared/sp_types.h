@@ -123,11 +123,11 @@ struct SimParams {
   uint step;
   // Diffraction (docs/model.md#diffraction); diffraction == 0 leaves the
   // model exactly as without it.
-  uint diffraction;             // 1: rays may turn at exposed edges
-  float edge_cos_max;           // an exposed edge diffracts when cos(turn angle) <= this
-  float diffraction_reach;      // metres from an edge within which a struck ray may turn
-  float diffraction_width;      // 1 / (2k): the deflection width sigma(a) = min(pi/2, width / a)
-  float diffraction_gain;       // fraction of its energy a diffracted ray keeps, in [0, 1]
+  uint diffraction;         // 1: rays may turn at exposed edges
+  float edge_cos_max;       // an exposed edge diffracts when cos(turn angle) <= this
+  float diffraction_reach;  // metres from an edge within which a struck ray may turn
+  float diffraction_width;  // 1 / (2k): the deflection width sigma(a) = min(pi/2, width / a)
+  float diffraction_gain;   // fraction of its energy a diffracted ray keeps, in [0, 1]
   uint pad0;
   uint pad1;
   uint pad2;
@@ -154,9 +154,9 @@ struct StepSource {
   vec3 position;
   float max_distance;  // D_max == R_max
   vec3 color;
-  float loudness;      // E0
-  float intensity;     // I = max(0, 1 - d_ls / R_max) at emission
-  uint first_ray;      // this source's rays are [first_ray, first_ray + ray_count)
+  float loudness;   // E0
+  float intensity;  // I = max(0, 1 - d_ls / R_max) at emission
+  uint first_ray;   // this source's rays are [first_ray, first_ray + ray_count)
   uint ray_count;
   uint source_id;
 };
@@ -164,20 +164,20 @@ SP_CHECK_LAYOUT(sizeof(StepSource) == 48 && offsetof(StepSource, color) == 16 &&
 
 // One ray's state between wavefront iterations, 96 bytes.
 struct RayState {
-  vec3 origin;        // where the next forward cast starts
-  float energy;       // E
-  vec3 dir;           // unit direction
-  float travelled;    // path length so far, metres
-  vec3 entry;         // p_in while ResolvingPenetration
-  uint entry_layer;   // layer of the entry face while ResolvingPenetration
-  uint state;         // SP_RAY_*
-  uint bounces;       // reflections so far
-  uint penetrations;  // completed penetrations so far
-  uint ray_index;     // index among the step's emitted rays (RNG key)
-  uint source;        // index into the step's StepSource table
-  uint casts;         // casts made so far == wavefront iteration index
-  float max_distance; // D_max of its source
-  float loudness;     // E0 of its source
+  vec3 origin;          // where the next forward cast starts
+  float energy;         // E
+  vec3 dir;             // unit direction
+  float travelled;      // path length so far, metres
+  vec3 entry;           // p_in while ResolvingPenetration
+  uint entry_layer;     // layer of the entry face while ResolvingPenetration
+  uint state;           // SP_RAY_*
+  uint bounces;         // reflections so far
+  uint penetrations;    // completed penetrations so far
+  uint ray_index;       // index among the step's emitted rays (RNG key)
+  uint source;          // index into the step's StepSource table
+  uint casts;           // casts made so far == wavefront iteration index
+  float max_distance;   // D_max of its source
+  float loudness;       // E0 of its source
   uint entry_triangle;  // leaf-order index of the entry face while ResolvingPenetration
   uint diffractions;    // times the ray turned at an edge (docs/model.md#diffraction)
   uint pad0;
@@ -194,9 +194,9 @@ struct Indicator {
   float size;   // indicator_size * E / E0
   vec3 color;
   float intensity;
-  vec3 dir;     // the ray's direction of travel: incoming (hit), outgoing (exit)
+  vec3 dir;  // the ray's direction of travel: incoming (hit), outgoing (exit)
   float path_length;
-  uint kind;    // SP_INDICATOR_*
+  uint kind;  // SP_INDICATOR_*
   uint source_id;
   uint bounces;
   uint penetrations;

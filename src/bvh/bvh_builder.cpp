@@ -200,10 +200,9 @@ class Builder {
     Builder worker(*this, sub);
     std::future<void> done;
     try {
-      done = std::async(std::launch::async,
-                        [&worker, middle, end, level, &right_centroids] {
-                          worker.subdivide(0, middle, end, level, right_centroids);
-                        });
+      done = std::async(std::launch::async, [&worker, middle, end, level, &right_centroids] {
+        worker.subdivide(0, middle, end, level, right_centroids);
+      });
     } catch (const std::system_error&) {
       return false;
     }
@@ -257,8 +256,8 @@ class Builder {
       // Small enough for a leaf: split only where the SAH says it pays off.
       const BvhNode& n = (*nodes_)[node];
       const float parent_area = half_area(Box{to_vec4(n.bmin), to_vec4(n.bmax)});
-      const bool split_pays = split.valid && parent_area > 0.0f &&
-                              traversal_cost_ + split.cost / parent_area < static_cast<float>(count);
+      const bool split_pays =
+          split.valid && parent_area > 0.0f && traversal_cost_ + split.cost / parent_area < static_cast<float>(count);
       if (!split_pays) return make_leaf(node, begin, count);
     }
 
@@ -331,8 +330,8 @@ class Builder {
       acc = Box{};
       for (std::uint32_t left = 1; left < count; ++left) {
         acc.grow(r[order[left - 1u]].lo, r[order[left - 1u]].hi);
-        const float cost = half_area(acc) * static_cast<float>(left) +
-                           right_area[left] * static_cast<float>(count - left);
+        const float cost =
+            half_area(acc) * static_cast<float>(left) + right_area[left] * static_cast<float>(count - left);
         if (!best.valid || cost < best.cost) best = Split{true, a, static_cast<std::int32_t>(left), cost};
       }
     }
@@ -392,8 +391,8 @@ class Builder {
         n += counts[b];
         acc.grow(boxes[b]);
         if (n == 0u || right_count_[b + 1u] == 0u) continue;
-        const float cost = half_area(acc) * static_cast<float>(n) +
-                           right_area_[b + 1u] * static_cast<float>(right_count_[b + 1u]);
+        const float cost =
+            half_area(acc) * static_cast<float>(n) + right_area_[b + 1u] * static_cast<float>(right_count_[b + 1u]);
         if (!best.valid || cost < best.cost) best = Split{true, a, static_cast<std::int32_t>(b), cost};
       }
     }
@@ -425,9 +424,9 @@ class Builder {
   std::uint32_t max_depth_ = SP_BVH_MAX_DEPTH;
   float traversal_cost_ = 1.0f;
   std::uint32_t spawn_levels_ = 0;  // 0: single-threaded
-  std::vector<Record> records_;       // owned by the top-level builder only
+  std::vector<Record> records_;     // owned by the top-level builder only
   std::vector<std::uint32_t> indices_;
-  Record* records_ptr_ = nullptr;     // records_ of the top-level builder
+  Record* records_ptr_ = nullptr;  // records_ of the top-level builder
   std::uint32_t* indices_ptr_ = nullptr;
   std::vector<Box> bin_boxes_[3];  // per axis
   std::vector<std::uint32_t> bin_counts_[3];

@@ -58,8 +58,8 @@ void check_vertices(const Bvh& bvh, std::span<const glm::vec3> vertices) {
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const glm::vec3 v = vertices[i];
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-      fail("vertex " + std::to_string(i) + " (of triangle " + std::to_string(i / 3u) + ") is not finite: " +
-           describe(v));
+      fail("vertex " + std::to_string(i) + " (of triangle " + std::to_string(i / 3u) +
+           ") is not finite: " + describe(v));
   }
 }
 

@@ -20,7 +20,9 @@ struct EdgeUse {
   std::uint32_t triangle;
   std::uint32_t edge;  // 0..2: from corner edge to corner (edge + 1) % 3
   bool operator<(const EdgeUse& other) const {
-    return key != other.key ? key < other.key : triangle != other.triangle ? triangle < other.triangle : edge < other.edge;
+    return key != other.key             ? key < other.key
+           : triangle != other.triangle ? triangle < other.triangle
+                                        : edge < other.edge;
   }
 };
 

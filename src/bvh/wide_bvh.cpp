@@ -259,8 +259,7 @@ struct Nearest {
 // (tmin, limit] and the collector's rule. Every line mirrors the shared
 // function operation for operation, so each lane's t is bit-identical to it.
 template <class Collector>
-inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count,
-                              Collector& best) {
+inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count, Collector& best) {
   const Vec4 zero = splat(0.0f);
   for (const TrianglePacket* p = packets; p != packets + count; ++p) {
     // a = v0 - origin, b = v1 - origin, c = v2 - origin, in the axes kx, ky, kz.

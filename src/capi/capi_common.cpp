@@ -40,12 +40,18 @@ sp_result fail(sp_result code, const char* message) noexcept {
 
 sp_result to_result(ErrorCode code) noexcept {
   switch (code) {
-    case ErrorCode::InvalidArgument: return SP_ERROR_INVALID_ARGUMENT;
-    case ErrorCode::InvalidScene: return SP_ERROR_INVALID_SCENE;
-    case ErrorCode::InvalidConfig: return SP_ERROR_INVALID_CONFIG;
-    case ErrorCode::Io: return SP_ERROR_IO;
-    case ErrorCode::Vulkan: return SP_ERROR_VULKAN;
-    case ErrorCode::LimitExceeded: return SP_ERROR_LIMIT_EXCEEDED;
+    case ErrorCode::InvalidArgument:
+      return SP_ERROR_INVALID_ARGUMENT;
+    case ErrorCode::InvalidScene:
+      return SP_ERROR_INVALID_SCENE;
+    case ErrorCode::InvalidConfig:
+      return SP_ERROR_INVALID_CONFIG;
+    case ErrorCode::Io:
+      return SP_ERROR_IO;
+    case ErrorCode::Vulkan:
+      return SP_ERROR_VULKAN;
+    case ErrorCode::LimitExceeded:
+      return SP_ERROR_LIMIT_EXCEEDED;
   }
   return SP_ERROR_INTERNAL;
 }
@@ -90,9 +96,12 @@ void require_live(HandleKind kind, const void* handle, const char* function, con
 
 BackendChoice backend_choice(sp_backend backend, const char* function) {
   switch (backend) {
-    case SP_BACKEND_CPU: return BackendChoice::Cpu;
-    case SP_BACKEND_GPU: return BackendChoice::Gpu;
-    case SP_BACKEND_AUTO: return BackendChoice::Auto;
+    case SP_BACKEND_CPU:
+      return BackendChoice::Cpu;
+    case SP_BACKEND_GPU:
+      return BackendChoice::Gpu;
+    case SP_BACKEND_AUTO:
+      return BackendChoice::Auto;
   }
   throw_invalid(function, "backend must be SP_BACKEND_CPU, SP_BACKEND_GPU or SP_BACKEND_AUTO");
 }

@@ -65,14 +65,18 @@ Palette palette(const sp_palette& in, const char* function) {
   std::underlying_type_t<sp_palette> raw;
   std::memcpy(&raw, &in, sizeof raw);
   switch (raw) {
-    case SP_PALETTE_OKABE_ITO: return Palette::OkabeIto;
-    case SP_PALETTE_HIGH_CONTRAST: return Palette::HighContrast;
-    case SP_PALETTE_SINGLE_HUE: return Palette::SingleHue;
-    default: break;
+    case SP_PALETTE_OKABE_ITO:
+      return Palette::OkabeIto;
+    case SP_PALETTE_HIGH_CONTRAST:
+      return Palette::HighContrast;
+    case SP_PALETTE_SINGLE_HUE:
+      return Palette::SingleHue;
+    default:
+      break;
   }
-  bad_field(
-      function, "settings", "palette",
-      "is " + std::to_string(raw) + ", not SP_PALETTE_OKABE_ITO, SP_PALETTE_HIGH_CONTRAST or SP_PALETTE_SINGLE_HUE");
+  bad_field(function, "settings", "palette",
+            "is " + std::to_string(raw) +
+                ", not SP_PALETTE_OKABE_ITO, SP_PALETTE_HIGH_CONTRAST or SP_PALETTE_SINGLE_HUE");
 }
 
 }  // namespace

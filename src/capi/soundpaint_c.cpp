@@ -181,8 +181,8 @@ sp_result sp_scene_create_with_instances(const float* vertices, uint32_t triangl
                                          uint32_t layer_count, const uint32_t* triangle_instances,
                                          const char* const* instance_names, uint32_t instance_count,
                                          sp_scene** out) noexcept {
-  const SceneArrays in{vertices,           triangle_count, triangle_layers, layer_names, layer_count,
-                       triangle_instances, instance_names, instance_count};
+  const SceneArrays in{vertices,    triangle_count,     triangle_layers, layer_names,
+                       layer_count, triangle_instances, instance_names,  instance_count};
   return create_scene(in, out, "sp_scene_create_with_instances");
 }
 
@@ -237,9 +237,8 @@ sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* c
 }
 
 sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
-  return guarded([&] {
-    sp::capi::destroy_handle(HandleKind::Simulation, simulation, "sp_simulation_destroy", "simulation");
-  });
+  return guarded(
+      [&] { sp::capi::destroy_handle(HandleKind::Simulation, simulation, "sp_simulation_destroy", "simulation"); });
 }
 
 sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) noexcept {
@@ -268,8 +267,7 @@ sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, doub
     if (source_id >= count)
       throw_invalid(fn, "unknown source id " + std::to_string(source_id) + " (there are " + std::to_string(count) +
                             " sources)");
-    require(std::isfinite(duration_seconds) && duration_seconds >= 0.0, fn,
-            "duration_seconds must be finite and >= 0");
+    require(std::isfinite(duration_seconds) && duration_seconds >= 0.0, fn, "duration_seconds must be finite and >= 0");
     unwrap(simulation->simulator->play(source_id, duration_seconds));  // also rejects a removed source
   });
 }
@@ -322,4 +320,3 @@ sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept
 }
 
 }  // extern "C"
-

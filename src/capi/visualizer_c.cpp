@@ -39,9 +39,8 @@ static_assert(sizeof(sp_host_vulkan) == sizeof(sp::HostVulkan) && SP_HOST(instan
                   SP_HOST(pipeline_cache) && SP_HOST(allocator) && SP_HOST(enabled_features),
               "sp_host_vulkan (soundpaint_vulkan.h) and sp::HostVulkan (visualizer.h) must keep one layout");
 #define SP_TARGET(field) SP_SAME(sp_draw_target, sp::DrawTarget, field)
-static_assert(sizeof(sp_draw_target) == sizeof(sp::DrawTarget) && SP_TARGET(color_format) &&
-                  SP_TARGET(depth_format) && SP_TARGET(stencil_format) && SP_TARGET(samples) &&
-                  SP_TARGET(depth_compare),
+static_assert(sizeof(sp_draw_target) == sizeof(sp::DrawTarget) && SP_TARGET(color_format) && SP_TARGET(depth_format) &&
+                  SP_TARGET(stencil_format) && SP_TARGET(samples) && SP_TARGET(depth_compare),
               "sp_draw_target (soundpaint_vulkan.h) and sp::DrawTarget (visualizer.h) must keep one layout");
 #undef SP_TARGET
 #undef SP_HOST
@@ -99,9 +98,8 @@ sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target*
 }
 
 sp_result sp_visualizer_destroy(sp_visualizer* visualizer) noexcept {
-  return guarded([&] {
-    sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, "sp_visualizer_destroy", "visualizer");
-  });
+  return guarded(
+      [&] { sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, "sp_visualizer_destroy", "visualizer"); });
 }
 
 sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) noexcept {
@@ -175,8 +173,7 @@ sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImage
     require(count == 0 || views != nullptr, fn, "views is NULL but count is above 0");
     // Named by index here; the visualizer would only say that one is null.
     for (uint32_t i = 0; i < count; ++i)
-      if (views[i] == VK_NULL_HANDLE)
-        sp::capi::throw_invalid(fn, "views[" + std::to_string(i) + "] is VK_NULL_HANDLE");
+      if (views[i] == VK_NULL_HANDLE) sp::capi::throw_invalid(fn, "views[" + std::to_string(i) + "] is VK_NULL_HANDLE");
     unwrap(v.set_scene_depth(std::span<const VkImageView>(views, count)));
   });
 }

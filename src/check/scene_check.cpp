@@ -90,8 +90,8 @@ void add_scale_finding(const Scene& scene, std::vector<CheckFinding>& findings) 
                                double(largest))});
 }
 
-void add_probe_findings(const Scene& scene, const Config& config, const CheckReport& report,
-                        float reach, std::vector<CheckFinding>& findings) {
+void add_probe_findings(const Scene& scene, const Config& config, const CheckReport& report, float reach,
+                        std::vector<CheckFinding>& findings) {
   const PenetrationProbe& probe = report.probe;
   const PenetrationProbe& at_config = report.probe_at_config;
   if (probe.penetrations > 0 && probe.miss_share() > kMissShareReported) {
@@ -121,20 +121,23 @@ void add_probe_findings(const Scene& scene, const Config& config, const CheckRep
 }  // namespace
 
 Result<CheckReport> check_scene(const Scene& scene, const Config& config, const CheckSettings& settings) {
-  return capture_errors([&]() -> CheckReport {
-    CheckReport report;
-    report.triangles = scene.triangle_count();
-    const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, scene.layer_names.size());
-    add_topology_findings(scene, topology, report.findings);
-    add_scale_finding(scene, report.findings);
-    report.probe = probe_penetration(scene, config, settings).value();
-    CheckSettings at_config = settings;
-    at_config.probe_reach = 0.0f;
-    report.probe_at_config = probe_penetration(scene, config, at_config).value();
-    const float reach = std::max(settings.probe_reach, config.max_wall_thickness);
-    add_probe_findings(scene, config, report, reach, report.findings);
-    return report;
-  }, ErrorCode::InvalidScene);
+  return capture_errors(
+      [&]() -> CheckReport {
+        CheckReport report;
+        report.triangles = scene.triangle_count();
+        const MeshTopology topology =
+            analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, scene.layer_names.size());
+        add_topology_findings(scene, topology, report.findings);
+        add_scale_finding(scene, report.findings);
+        report.probe = probe_penetration(scene, config, settings).value();
+        CheckSettings at_config = settings;
+        at_config.probe_reach = 0.0f;
+        report.probe_at_config = probe_penetration(scene, config, at_config).value();
+        const float reach = std::max(settings.probe_reach, config.max_wall_thickness);
+        add_probe_findings(scene, config, report, reach, report.findings);
+        return report;
+      },
+      ErrorCode::InvalidScene);
 }
 
 }  // namespace sp

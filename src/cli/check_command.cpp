@@ -60,11 +60,12 @@ int run_check(const std::vector<std::string>& args) {
   const CheckReport report = check_scene(scene, config).value();
   std::printf("scene: %s\ntriangles: %llu\n", scene.path.string().c_str(),
               static_cast<unsigned long long>(report.triangles));
-  std::printf("probe: %llu penetrations, %.1f%% found no way out (%.1f%% within max_wall_thickness); %llu hits, "
-              "%llu on the back of a face\n",
-              static_cast<unsigned long long>(report.probe.penetrations), 100.0 * report.probe.miss_share(),
-              100.0 * report.probe_at_config.miss_share(), static_cast<unsigned long long>(report.probe.hits),
-              static_cast<unsigned long long>(report.probe.back_face_hits));
+  std::printf(
+      "probe: %llu penetrations, %.1f%% found no way out (%.1f%% within max_wall_thickness); %llu hits, "
+      "%llu on the back of a face\n",
+      static_cast<unsigned long long>(report.probe.penetrations), 100.0 * report.probe.miss_share(),
+      100.0 * report.probe_at_config.miss_share(), static_cast<unsigned long long>(report.probe.hits),
+      static_cast<unsigned long long>(report.probe.back_face_hits));
   if (report.findings.empty()) std::printf("no findings: closed, consistently wound solids in metres\n");
   for (const CheckFinding& f : report.findings) std::printf("%s: %s\n", f.code.c_str(), f.message.c_str());
   if (json_file) {

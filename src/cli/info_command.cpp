@@ -68,8 +68,8 @@ int run_info(const std::vector<std::string>& args) {
   std::printf("listener: ");
   print_vec(world.listener);
   std::printf(" (%s)\n", listener_from);
-  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.geometry->bvh.nodes.size(), world.geometry->bvh.depth,
-              world.geometry->bvh.build_ms);
+  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.geometry->bvh.nodes.size(),
+              world.geometry->bvh.depth, world.geometry->bvh.build_ms);
   // Each exposed edge is held by one triangle (a free boundary) or two.
   const auto started = std::chrono::steady_clock::now();
   const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.geometry->bvh);
@@ -82,9 +82,9 @@ int run_info(const std::vector<std::string>& args) {
       if (e.turn_cos[i] <= -1.0f) ++boundary;
       else if (e.turn_cos[i] <= cos_max) ++convex;
     }
-  std::printf("diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found in %.3f ms (diffraction %s)\n",
-              double(config.diffraction.edge_angle), convex / 2, boundary, edges_ms,
-              config.diffraction.enabled ? "on" : "off");
+  std::printf(
+      "diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found in %.3f ms (diffraction %s)\n",
+      double(config.diffraction.edge_angle), convex / 2, boundary, edges_ms, config.diffraction.enabled ? "on" : "off");
   return 0;
 }
 

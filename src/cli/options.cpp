@@ -23,9 +23,8 @@ std::optional<std::uint64_t> ParsedArgs::unsigned_value(const std::string& name,
   std::uint64_t parsed = 0;
   auto [end, ec] = std::from_chars(text->data(), text->data() + text->size(), parsed);
   if (text->empty() || ec != std::errc{} || end != text->data() + text->size() || parsed < min || parsed > max)
-    throw Exception(ErrorCode::InvalidArgument, "option " + name + ": expected an integer in [" +
-                                                    std::to_string(min) + ", " + std::to_string(max) + "], got '" +
-                                                    *text + "'");
+    throw Exception(ErrorCode::InvalidArgument, "option " + name + ": expected an integer in [" + std::to_string(min) +
+                                                    ", " + std::to_string(max) + "], got '" + *text + "'");
   return parsed;
 }
 

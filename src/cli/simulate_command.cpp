@@ -69,8 +69,8 @@ int run_simulate(const std::vector<std::string>& args) {
   LoadedWorld loaded =
       load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
   warn_if_penetration_fails(loaded.scene, loaded.world.config);
-  std::unique_ptr<Simulator> simulator = create_simulator(std::move(loaded.world), backend,
-                                                          static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
+  std::unique_ptr<Simulator> simulator = create_simulator(
+      std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
 
   // Open outputs before the run so an unwritable path fails fast; both only
   // appear under their names once complete.
@@ -90,8 +90,9 @@ int run_simulate(const std::vector<std::string>& args) {
   }
 
   SimulationStats stats = simulator->stats().value();
-  if (stats_file) stats_file->write(stats_json(simulator->world(), stats, backend_name(simulator->backend()),
-                                              simulator->device_description(), timings));
+  if (stats_file)
+    stats_file->write(stats_json(simulator->world(), stats, backend_name(simulator->backend()),
+                                 simulator->device_description(), timings));
   if (csv) csv->commit().value();
   if (stats_file) stats_file->commit();
   std::fprintf(report, "%llu steps on %s: %llu rays, %llu casts, %llu indicators, %.3f ms/step median\n",

@@ -70,8 +70,8 @@ int run_view(const std::vector<std::string>& args) {
   if (auto text = parsed.value("--resize-at")) {
     const glm::vec3 v = parse_vec3("--resize-at", *text);
     if (!(v.x >= 1.0f && v.y >= 64.0f && v.z >= 64.0f && v.y <= 8192.0f && v.z <= 8192.0f))
-      throw Exception(ErrorCode::InvalidArgument, "option --resize-at: expected K,W,H with K >= 1 and 64 <= W, H <= 8192, got '" +
-                                                      *text + "'");
+      throw Exception(ErrorCode::InvalidArgument,
+                      "option --resize-at: expected K,W,H with K >= 1 and 64 <= W, H <= 8192, got '" + *text + "'");
     options.resize_frame = static_cast<std::uint64_t>(v.x);
     options.resize_width = static_cast<std::uint32_t>(v.y);
     options.resize_height = static_cast<std::uint32_t>(v.z);
@@ -84,8 +84,9 @@ int run_view(const std::vector<std::string>& args) {
     std::fprintf(stderr, "soundpaint: view: %u Vulkan validation messages\n", messages);
     return 3;
   }
-  if (options.screenshot) std::printf("%s: the last of %llu frames\n", options.screenshot->c_str(),
-                                      static_cast<unsigned long long>(options.frames));
+  if (options.screenshot)
+    std::printf("%s: the last of %llu frames\n", options.screenshot->c_str(),
+                static_cast<unsigned long long>(options.frames));
   return 0;
 #else
   if (parsed.flags.count("--help")) {

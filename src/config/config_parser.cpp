@@ -109,10 +109,12 @@ BudgetWeighting read_budget_weighting(const json& value, const JsonPath& at) {
 }
 
 constexpr KeyReader kKeyReaders[] = {
-    {"scan_radius", [](const json& v, const JsonPath& at, Config& c) { c.scan_radius = read_float(v, at, kNonNegative); }},
-    {"ray_budget", [](const json& v, const JsonPath& at, Config& c) { c.ray_budget = read_uint32(v, at, 0, kMaxRayBudget); }},
-    {"max_indicators",
-     [](const json& v, const JsonPath& at, Config& c) { c.max_indicators = read_uint32(v, at, 1, kMaxIndicatorsLimit); }},
+    {"scan_radius",
+     [](const json& v, const JsonPath& at, Config& c) { c.scan_radius = read_float(v, at, kNonNegative); }},
+    {"ray_budget",
+     [](const json& v, const JsonPath& at, Config& c) { c.ray_budget = read_uint32(v, at, 0, kMaxRayBudget); }},
+    {"max_indicators", [](const json& v, const JsonPath& at,
+                          Config& c) { c.max_indicators = read_uint32(v, at, 1, kMaxIndicatorsLimit); }},
     {"budget_weighting",
      [](const json& v, const JsonPath& at, Config& c) { c.budget_weighting = read_budget_weighting(v, at); }},
     {"max_bounces",
@@ -121,7 +123,8 @@ constexpr KeyReader kKeyReaders[] = {
      [](const json& v, const JsonPath& at, Config& c) { c.bounce_energy_loss = read_float(v, at, kUnitInterval); }},
     {"max_wall_thickness",
      [](const json& v, const JsonPath& at, Config& c) { c.max_wall_thickness = read_float(v, at, kPositive); }},
-    {"min_energy", [](const json& v, const JsonPath& at, Config& c) { c.min_energy = read_float(v, at, kNonNegative); }},
+    {"min_energy",
+     [](const json& v, const JsonPath& at, Config& c) { c.min_energy = read_float(v, at, kNonNegative); }},
     {"air_attenuation",
      [](const json& v, const JsonPath& at, Config& c) { c.air_attenuation = read_float(v, at, kNonNegative); }},
     {"indicator_size",
@@ -176,8 +179,7 @@ std::string read_text_file(const std::filesystem::path& path, const std::string&
 }  // namespace
 
 Result<Config> parse_config(std::string_view json_text, std::string_view origin) {
-  return capture_errors([&] { return read_config(parse_strict(json_text, origin), origin); },
-                        ErrorCode::InvalidConfig);
+  return capture_errors([&] { return read_config(parse_strict(json_text, origin), origin); }, ErrorCode::InvalidConfig);
 }
 
 Result<Config> load_config(const std::filesystem::path& path) {

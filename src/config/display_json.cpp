@@ -8,7 +8,7 @@ namespace sp::json_fields {
 namespace {
 
 constexpr std::array<std::string_view, 10> kDisplayKeys = {
-    "palette", "shapes",         "direction", "outline",          "size_scale",
+    "palette",       "shapes",      "direction",       "outline",          "size_scale",
     "opacity_scale", "min_opacity", "hide_categories", "max_per_category", "offscreen_arrows"};
 
 // The names a shape or palette may take, for messages.

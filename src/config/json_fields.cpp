@@ -218,9 +218,7 @@ JsonPath JsonPath::key(std::string_view name) const {
   return JsonPath(origin_, std::move(child));
 }
 
-JsonPath JsonPath::index(std::size_t i) const {
-  return JsonPath(origin_, path_ + '[' + std::to_string(i) + ']');
-}
+JsonPath JsonPath::index(std::size_t i) const { return JsonPath(origin_, path_ + '[' + std::to_string(i) + ']'); }
 
 void JsonPath::fail(std::string_view what) const {
   if (path_.empty()) throw_config_error(origin_, what);
@@ -250,10 +248,9 @@ std::string NumberRange::describe() const {
 json parse_strict(std::string_view text, std::string_view origin) {
   DuplicateKeyChecker checker(origin);
   try {
-    return json::parse(text.begin(), text.end(),
-                       [&checker](int depth, json::parse_event_t event, json& parsed) {
-                         return checker(depth, event, parsed);
-                       });
+    return json::parse(text.begin(), text.end(), [&checker](int depth, json::parse_event_t event, json& parsed) {
+      return checker(depth, event, parsed);
+    });
   } catch (const json::exception& e) {
     if (e.id == 406) {
       // A literal beyond double range such as 1e999 ("number overflow parsing
@@ -263,7 +260,8 @@ json parse_strict(std::string_view text, std::string_view origin) {
       const std::size_t close = detail.rfind('\'');
       std::string literal = open < close ? detail.substr(open + 1, close - open - 1) : "a huge number";
       if (literal.size() > kMaxShownValueChars) literal = literal.substr(0, kMaxShownValueChars - 3) + "...";
-      JsonPath(origin, checker.pending_path()).fail("must be a finite number, got " + literal + " (overflows a double)");
+      JsonPath(origin, checker.pending_path())
+          .fail("must be a finite number, got " + literal + " (overflows a double)");
     }
     // what() is "[json.exception.parse_error.101] parse error at line 1, ...";
     // the bracketed id means nothing to a user.
@@ -355,8 +353,7 @@ float read_float(const json& value, const JsonPath& at, NumberRange range) {
 }
 
 std::uint32_t read_uint32(const json& value, const JsonPath& at, std::uint32_t min, std::uint32_t max) {
-  const std::string expected =
-      "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  const std::string expected = "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   // 5.0 and 5e0 are floats to nlohmann: counts must be written as integers.
   if (value.is_number_unsigned()) {
     const auto u = value.get<std::uint64_t>();

@@ -27,8 +27,8 @@ class JsonPath {
  public:
   explicit JsonPath(std::string_view origin, std::string path = {}) : origin_(origin), path_(std::move(path)) {}
 
-  JsonPath key(std::string_view name) const;    // "a" -> "a.name"
-  JsonPath index(std::size_t i) const;          // "a" -> "a[i]"
+  JsonPath key(std::string_view name) const;  // "a" -> "a.name"
+  JsonPath index(std::size_t i) const;        // "a" -> "a[i]"
 
   std::string_view origin() const { return origin_; }
   const std::string& path() const { return path_; }

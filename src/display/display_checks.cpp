@@ -11,7 +11,8 @@ void check_display_settings(const DisplaySettings& settings) {
   auto fail = [](const std::string& key, const char* what) {
     throw Exception(ErrorCode::InvalidConfig, "display." + key + " " + what);
   };
-  if (!(settings.size_scale > 0.0f) || !std::isfinite(settings.size_scale)) fail("size_scale", "must be finite and > 0");
+  if (!(settings.size_scale > 0.0f) || !std::isfinite(settings.size_scale))
+    fail("size_scale", "must be finite and > 0");
   if (!(settings.opacity_scale >= 0.0f) || !std::isfinite(settings.opacity_scale))
     fail("opacity_scale", "must be finite and >= 0");
   if (!(settings.min_opacity >= 0.0f && settings.min_opacity <= 1.0f)) fail("min_opacity", "must be in [0, 1]");

@@ -34,7 +34,7 @@ struct DisplayFrame {
   std::uint32_t source_count = 0;    // entries of the source table
   std::uint32_t category_count = 0;  // categories the world numbers
   DisplaySettings settings;
-  bool offscreen_arrows = false;     // settings.offscreen_arrows, or the front end's default
+  bool offscreen_arrows = false;  // settings.offscreen_arrows, or the front end's default
 
   // For `world` after `steps_run` steps, shown as `settings` say;
   // `arrows_by_default` where the settings leave arrows unset.

@@ -24,8 +24,8 @@ std::vector<shader::DisplaySource> make_display_sources(const World& world, cons
     entry.category = category;
     entry.color = id < world.source_colors.size() ? to_glm(world.source_colors[id]) : glm::vec3(1.0f);
     const std::string& name = category < categories.size() ? categories.name(category) : world.sources[id].category;
-    entry.shape_flags = static_cast<std::uint32_t>(categories.shape_of(std::min(category, categories.size() - 1),
-                                                                      settings.shapes));
+    entry.shape_flags =
+        static_cast<std::uint32_t>(categories.shape_of(std::min(category, categories.size() - 1), settings.shapes));
     const bool hidden = std::find(settings.hide_categories.begin(), settings.hide_categories.end(), name) !=
                         settings.hide_categories.end();
     if (hidden) entry.shape_flags |= SP_SOURCE_HIDDEN;

@@ -107,7 +107,8 @@ GraphicsPipeline::GraphicsPipeline(const vk::Context& context, const GraphicsPip
   info.pDynamicState = &dynamic;
   info.layout = layout_.get();
   VkPipeline raw_pipeline = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateGraphicsPipelines(device, context.pipeline_cache(), 1, &info, context.allocator(), &raw_pipeline));
+  SP_VK_CHECK(
+      vkCreateGraphicsPipelines(device, context.pipeline_cache(), 1, &info, context.allocator(), &raw_pipeline));
   pipeline_ = vk::UniquePipeline(device, raw_pipeline, context.allocator());
   context.set_name(VK_OBJECT_TYPE_PIPELINE, raw_pipeline, label.c_str());
 }

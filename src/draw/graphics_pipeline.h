@@ -20,18 +20,18 @@ enum class Blend {
 struct GraphicsPipelineDesc {
   std::span<const std::uint32_t> vertex_spirv;  // embedded SPIR-V, entry point "main"
   std::span<const std::uint32_t> fragment_spirv;
-  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;  // set 0
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;    // set 0
   VkDescriptorSetLayout set_layout_1 = VK_NULL_HANDLE;  // set 1, optional
-  std::uint32_t push_constant_bytes = 0;              // one range, vertex + fragment stages
+  std::uint32_t push_constant_bytes = 0;                // one range, vertex + fragment stages
   VkFormat color_format = VK_FORMAT_UNDEFINED;
-  VkFormat depth_format = VK_FORMAT_UNDEFINED;   // UNDEFINED: no depth attachment, no depth test
-  VkFormat stencil_format = VK_FORMAT_UNDEFINED; // the rendering's stencil attachment, if any
+  VkFormat depth_format = VK_FORMAT_UNDEFINED;    // UNDEFINED: no depth attachment, no depth test
+  VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if any
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   Blend blend = Blend::Opaque;
   bool depth_write = true;
-  bool depth_test = true;  // false: drawn over everything (screen-space overlays)
+  bool depth_test = true;                                   // false: drawn over everything (screen-space overlays)
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // GREATER_OR_EQUAL for reversed depth
-  const char* name = "graphics pipeline";  // debug name
+  const char* name = "graphics pipeline";                   // debug name
 };
 
 // Triangle lists, no culling (the level's surfaces are seen from both

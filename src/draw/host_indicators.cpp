@@ -15,7 +15,8 @@ constexpr std::uint32_t kInitialCapacity = 1024;
 
 HostIndicators::HostIndicators(vk::Context& context)
     : context_(context),
-      args_(context, sizeof(VkDrawIndirectCommand), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible,
+      args_(context, sizeof(VkDrawIndirectCommand),
+            VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::HostVisible,
             "host indicator draw args") {
   upload({});
 }

@@ -67,10 +67,10 @@ class IndicatorPass {
   VkDeviceSize bound_draw_args_offset_ = 0;
   vk::StorageBindings bindings_;
   SceneDepthSets depth_sets_;
-  vk::Buffer sources_;      // DisplaySource per source id
-  vk::Buffer source_live_;  // per source id
-  vk::Buffer categories_;   // SP_CATEGORY_STRIDE per category
-  vk::Buffer visible_;      // per ring slot
+  vk::Buffer sources_;              // DisplaySource per source id
+  vk::Buffer source_live_;          // per source id
+  vk::Buffer categories_;           // SP_CATEGORY_STRIDE per category
+  vk::Buffer visible_;              // per ring slot
   GraphicsPipeline pipeline_;       // without clipping
   GraphicsPipeline clip_pipeline_;  // with the scene's depth, set 1
   GraphicsPipeline arrows_;

@@ -44,8 +44,8 @@ RgbaImage Renderer::render(const ViewCamera& camera, const gpu::IndicatorView& i
   indicators_.bind(indicators);  // the previous frame has finished: the set is free to update
   const DisplayFrame frame = DisplayFrame::from(world, steps_run, world.config.display, /*arrows_by_default=*/true);
   const std::vector<shader::DisplaySource> sources = make_display_sources(world, world.config.display);
-  const DrawView view = DrawView::from(camera.view, camera.projection,
-                                       glm::vec2(float(target_.width()), float(target_.height())));
+  const DrawView view =
+      DrawView::from(camera.view, camera.projection, glm::vec2(float(target_.width()), float(target_.height())));
   // One command buffer per frame, submitted and waited for: a picture is
   // read back right away, so there is nothing to overlap.
   context_.submit_and_wait([&](VkCommandBuffer cmd) {

@@ -73,7 +73,7 @@ class Renderer {
   RenderTarget target_;
   ScenePass scene_;
   IndicatorPass indicators_;
-  VkDescriptorSet scene_depth_ = VK_NULL_HANDLE;  // the target's depth, for clipping
+  VkDescriptorSet scene_depth_ = VK_NULL_HANDLE;   // the target's depth, for clipping
   std::optional<HostIndicators> host_indicators_;  // made on first use by a host-side backend
   vk::UniqueQueryPool timestamps_;                 // kQueries: start, scene done, indicators done, copy done
   std::optional<FrameTimings> last_timings_;

@@ -21,7 +21,7 @@ SceneDepthSets::SceneDepthSets(const vk::Context& context, std::uint32_t capacit
   sampler_info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sampler_info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sampler_ = vk::create_object<vk::UniqueSampler>(context, vkCreateSampler, sampler_info, VK_OBJECT_TYPE_SAMPLER,
-                                                 "scene depth sampler");
+                                                  "scene depth sampler");
 
   VkDescriptorSetLayoutBinding binding{};
   binding.binding = 0;
@@ -34,7 +34,8 @@ SceneDepthSets::SceneDepthSets(const vk::Context& context, std::uint32_t capacit
 }
 
 VkDescriptorSet SceneDepthSets::add(VkImageView view) {
-  if (view == VK_NULL_HANDLE) throw Exception(ErrorCode::InvalidArgument, "scene depth: the image view is VK_NULL_HANDLE");
+  if (view == VK_NULL_HANDLE)
+    throw Exception(ErrorCode::InvalidArgument, "scene depth: the image view is VK_NULL_HANDLE");
   if (sets_.size() >= capacity_)
     throw Exception(ErrorCode::LimitExceeded,
                     "scene depth: at most " + std::to_string(capacity_) + " depth views can be registered at once");

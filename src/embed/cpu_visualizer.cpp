@@ -30,8 +30,7 @@ class CpuVisualizer final : public VisualizerBase {
         draw_args_(*context_, sizeof(VkDrawIndirectCommand),
                    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,  // the display prepass reads the instance count
-                   vk::MemoryUsage::DeviceLocal,
-                   "cpu indicator draw args"),
+                   vk::MemoryUsage::DeviceLocal, "cpu indicator draw args"),
         worker_(settings.cpu.threads, scene_.world().layer_names.size()) {}
 
   ~CpuVisualizer() override { worker_.wait(); }
@@ -125,7 +124,8 @@ class CpuVisualizer final : public VisualizerBase {
     StepPlan plan;
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
-    worker_.start(scene_.world().geometry->bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_));
+    worker_.start(scene_.world().geometry->bvh, layer_table_, std::move(plan),
+                  make_sim_params(scene_.world().config, next_step_));
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
@@ -139,7 +139,8 @@ class CpuVisualizer final : public VisualizerBase {
     while (done < indicators.size()) {
       const std::uint64_t slot = (pushed_ + done) % capacity_;
       const std::size_t run = std::min<std::size_t>(indicators.size() - done, capacity_ - slot);
-      vk::record_update(cmd, ring_, slot * sizeof(shader::Indicator), &indicators[done], run * sizeof(shader::Indicator));
+      vk::record_update(cmd, ring_, slot * sizeof(shader::Indicator), &indicators[done],
+                        run * sizeof(shader::Indicator));
       done += run;
     }
     pushed_ += indicators.size();
@@ -160,14 +161,14 @@ class CpuVisualizer final : public VisualizerBase {
   std::vector<shader::LayerAcoustics> layer_table_;
   vk::Buffer ring_;
   vk::Buffer draw_args_;
-  CpuStepThread worker_;  // after what its running step reads
-  std::uint64_t pushed_ = 0;     // indicators ever appended to the ring
-  SimulationTotals totals_;      // casts, rays and indicators of the steps handed over
+  CpuStepThread worker_;            // after what its running step reads
+  std::uint64_t pushed_ = 0;        // indicators ever appended to the ring
+  SimulationTotals totals_;         // casts, rays and indicators of the steps handed over
   std::uint32_t running_rays_ = 0;  // rays of the step the worker runs
-  std::uint64_t steps_run_ = 0;  // steps handed over
-  std::uint64_t next_step_ = 0;  // step the worker runs next
+  std::uint64_t steps_run_ = 0;     // steps handed over
+  std::uint64_t next_step_ = 0;     // step the worker runs next
   std::uint64_t running_step_ = 0;  // step the worker runs or ran last
-  std::uint32_t due_ = 0;        // steps due but not started
+  std::uint32_t due_ = 0;           // steps due but not started
   bool recorded_ = false;
 };
 

@@ -41,30 +41,32 @@ class GpuVisualizer final : public VisualizerBase {
 
   Result<std::uint32_t> record_simulation(VkCommandBuffer cmd, double dt) override {
     if (auto valid = check_simulation_args(cmd, dt); !valid) return valid.error();
-    return capture_errors([&] {
-      const std::uint32_t steps = clock_.advance(dt);
-      gpu::RecordOptions options;
-      options.graphics_queue = simulation_on_graphics_queue_;
-      gpu::StageQueries* stages = nullptr;
-      if (stage_pool_ && steps > 0) {
-        TimedFrame& timed = timed_[frames_ % kTimedFrames];
-        const std::uint32_t first = (frames_ % kTimedFrames) * queries_per_frame_;
-        vkCmdResetQueryPool(cmd, stage_pool_.get(), first, queries_per_frame_);
-        timed.queries = gpu::StageQueries{stage_pool_.get(), first, first + queries_per_frame_, {}};
-        timed.steps = steps;
-        timed.frame = frames_;
-        stages = &timed.queries;
-        ++frames_;
-      }
-      options.stages = stages;
-      // Even without a step due: the first frame's uploads and moved
-      // geometry go in now, and the draw's barrier is recorded.
-      engine_.record(cmd, scene_, steps_run_, steps, options);
-      steps_run_ += steps;
-      recorded_ = true;
-      record_display(cmd);
-      return steps;
-    }, ErrorCode::Vulkan);
+    return capture_errors(
+        [&] {
+          const std::uint32_t steps = clock_.advance(dt);
+          gpu::RecordOptions options;
+          options.graphics_queue = simulation_on_graphics_queue_;
+          gpu::StageQueries* stages = nullptr;
+          if (stage_pool_ && steps > 0) {
+            TimedFrame& timed = timed_[frames_ % kTimedFrames];
+            const std::uint32_t first = (frames_ % kTimedFrames) * queries_per_frame_;
+            vkCmdResetQueryPool(cmd, stage_pool_.get(), first, queries_per_frame_);
+            timed.queries = gpu::StageQueries{stage_pool_.get(), first, first + queries_per_frame_, {}};
+            timed.steps = steps;
+            timed.frame = frames_;
+            stages = &timed.queries;
+            ++frames_;
+          }
+          options.stages = stages;
+          // Even without a step due: the first frame's uploads and moved
+          // geometry go in now, and the draw's barrier is recorded.
+          engine_.record(cmd, scene_, steps_run_, steps, options);
+          steps_run_ += steps;
+          recorded_ = true;
+          record_display(cmd);
+          return steps;
+        },
+        ErrorCode::Vulkan);
   }
 
   StageTimings stage_timings() const override {
@@ -83,19 +85,31 @@ class GpuVisualizer final : public VisualizerBase {
       // All written, and in order: a slot whose reset has not run yet still
       // holds an older frame's values, which need not fit this one's labels.
       bool ready = values[1] != 0;
-      for (std::uint32_t k = 1; k < count; ++k) ready = ready && values[2 * k + 1] != 0 && values[2 * k] >= values[2 * k - 2];
+      for (std::uint32_t k = 1; k < count; ++k)
+        ready = ready && values[2 * k + 1] != 0 && values[2 * k] >= values[2 * k - 2];
       if (!ready) continue;
       timings.measured = true;
       timings.steps = timed.steps;
       for (std::uint32_t k = 1; k < count; ++k) {
         const double ms = double(values[2 * k] - values[2 * (k - 1)]) * tick_ms_;
         switch (timed.queries.kinds[k]) {
-          case gpu::StageKernel::Emit: timings.emit_ms += ms; break;
-          case gpu::StageKernel::Trace: timings.trace_ms += ms; break;
-          case gpu::StageKernel::Resolve: timings.resolve_ms += ms; break;
-          case gpu::StageKernel::Prepare: timings.prepare_ms += ms; break;
-          case gpu::StageKernel::Admit: timings.admit_ms += ms; break;
-          case gpu::StageKernel::Start: break;  // between steps: the uploads, not a kernel
+          case gpu::StageKernel::Emit:
+            timings.emit_ms += ms;
+            break;
+          case gpu::StageKernel::Trace:
+            timings.trace_ms += ms;
+            break;
+          case gpu::StageKernel::Resolve:
+            timings.resolve_ms += ms;
+            break;
+          case gpu::StageKernel::Prepare:
+            timings.prepare_ms += ms;
+            break;
+          case gpu::StageKernel::Admit:
+            timings.admit_ms += ms;
+            break;
+          case gpu::StageKernel::Start:
+            break;  // between steps: the uploads, not a kernel
         }
       }
       return timings;

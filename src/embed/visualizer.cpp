@@ -72,23 +72,25 @@ Result<std::unique_ptr<Visualizer>> Visualizer::create(const HostVulkan& host, c
   if (!family_has(host.physical_device, host.queue_family, VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
     return invalid("Visualizer: queue family " + std::to_string(host.queue_family) +
                    " must support graphics and compute (it runs the indicator draw)");
-  const bool simulation_on_graphics_queue = (*context)->sharing_families().size() == 1 ||
-                                            family_has(host.physical_device, host.compute_queue_family,
-                                                       VK_QUEUE_GRAPHICS_BIT);
+  const bool simulation_on_graphics_queue =
+      (*context)->sharing_families().size() == 1 ||
+      family_has(host.physical_device, host.compute_queue_family, VK_QUEUE_GRAPHICS_BIT);
 
   const bool cpu_device = (*context)->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   const bool use_gpu =
       settings.backend == BackendChoice::Gpu || (settings.backend == BackendChoice::Auto && !cpu_device);
-  return capture_errors([&]() -> std::unique_ptr<Visualizer> {
-    // A player's config must not take the host down: refused at once when
-    // its rays and indicators could need more than the host allows.
-    check_memory_budget(world.config, use_gpu ? Backend::Gpu : Backend::Cpu, settings.cpu.memory_budget_bytes);
-    if (use_gpu)
-      return embed::make_gpu_visualizer(std::move(*context), target, std::move(world), settings,
-                                        simulation_on_graphics_queue);
-    return embed::make_cpu_visualizer(std::move(*context), target, std::move(world), settings,
-                                      simulation_on_graphics_queue);
-  }, ErrorCode::Vulkan);
+  return capture_errors(
+      [&]() -> std::unique_ptr<Visualizer> {
+        // A player's config must not take the host down: refused at once when
+        // its rays and indicators could need more than the host allows.
+        check_memory_budget(world.config, use_gpu ? Backend::Gpu : Backend::Cpu, settings.cpu.memory_budget_bytes);
+        if (use_gpu)
+          return embed::make_gpu_visualizer(std::move(*context), target, std::move(world), settings,
+                                            simulation_on_graphics_queue);
+        return embed::make_cpu_visualizer(std::move(*context), target, std::move(world), settings,
+                                          simulation_on_graphics_queue);
+      },
+      ErrorCode::Vulkan);
 }
 
 }  // namespace sp

@@ -71,8 +71,8 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, 
     const bool sized = size.x > 0.0f && size.y > 0.0f;
     draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
     const draw::DrawView draw_view = draw::DrawView::from(view, projection, sized ? size : glm::vec2(0.0f));
-    const VkDescriptorSet depth = options.scene_depth >= 0 ? scene_depths_[std::size_t(options.scene_depth)]
-                                                           : VK_NULL_HANDLE;
+    const VkDescriptorSet depth =
+        options.scene_depth >= 0 ? scene_depths_[std::size_t(options.scene_depth)] : VK_NULL_HANDLE;
     pass_.record(cmd, draw_view, frame, depth);
     if (sized) pass_.record_arrows(cmd, draw_view, frame);
     return true;
@@ -80,17 +80,20 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, 
 }
 
 Result<bool> VisualizerBase::set_display(const DisplaySettings& settings) {
-  return capture_errors([&] {
-    scene_.set_display(settings).value();
-    return true;
-  }, ErrorCode::InvalidConfig);
+  return capture_errors(
+      [&] {
+        scene_.set_display(settings).value();
+        return true;
+      },
+      ErrorCode::InvalidConfig);
 }
 
 Result<bool> VisualizerBase::set_scene_depth(std::span<const VkImageView> views) {
   return capture_errors([&] {
     if (views.size() > 8) throw Exception(ErrorCode::LimitExceeded, "set_scene_depth: at most 8 views");
     for (VkImageView view : views)
-      if (view == VK_NULL_HANDLE) throw Exception(ErrorCode::InvalidArgument, "set_scene_depth: a view is VK_NULL_HANDLE");
+      if (view == VK_NULL_HANDLE)
+        throw Exception(ErrorCode::InvalidArgument, "set_scene_depth: a view is VK_NULL_HANDLE");
     pass_.scene_depths().clear();
     scene_depths_.clear();
     for (VkImageView view : views) scene_depths_.push_back(pass_.scene_depths().add(view));

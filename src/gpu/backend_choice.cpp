@@ -39,8 +39,7 @@ Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, Wor
                                                        const CpuSettings& cpu, std::string* fallback_reason) {
   return choose(std::move(world), backend, cpu, fallback_reason,
                 [&](const World& w) -> Result<std::unique_ptr<Simulator>> {
-                  if (backend == BackendChoice::Auto &&
-                      context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+                  if (backend == BackendChoice::Auto && context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
                     return Error{ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
                                                         std::string(context.properties().deviceName) + ")"};
                   // On a shared context the CPU settings' budget holds for both backends.

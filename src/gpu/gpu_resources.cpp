@@ -78,8 +78,9 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   // Moving parts may force a rebuild, whose node count can differ; a binary
   // tree over n triangles never has more than 2n - 1 nodes.
   const std::size_t triangle_count = world.geometry->bvh.triangles.size();
-  node_capacity = static_cast<std::uint32_t>(
-      world.instance_names.empty() ? world.geometry->bvh.nodes.size() : std::max(world.geometry->bvh.nodes.size(), 2 * triangle_count - 1));
+  node_capacity = static_cast<std::uint32_t>(world.instance_names.empty()
+                                                 ? world.geometry->bvh.nodes.size()
+                                                 : std::max(world.geometry->bvh.nodes.size(), 2 * triangle_count - 1));
   source_capacity = sources;
   const std::vector<shader::LayerAcoustics> layer_table = make_layer_table(world);
   nodes = vk::Buffer(context, bytes<shader::BvhNode>(node_capacity), kStorage | kTransfer, vk::MemoryUsage::DeviceLocal,
@@ -97,12 +98,13 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                           kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "step input");
   rays = vk::Buffer(context, bytes<shader::RayState>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "rays");
   hits = vk::Buffer(context, bytes<shader::CastResult>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "hits");
-  queues = vk::Buffer(context, bytes<std::uint32_t>(2ull * max_rays), kStorage, vk::MemoryUsage::DeviceLocal,
-                      "ray queues");
+  queues =
+      vk::Buffer(context, bytes<std::uint32_t>(2ull * max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "ray queues");
   control = vk::Buffer(context, sizeof(shader::Control), kStorage | kTransfer | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                        vk::MemoryUsage::DeviceLocal, "control");
-  ring = vk::Buffer(context, bytes<shader::Indicator>(ring_capacity), kStorage | kTransfer |
-                        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::DeviceLocal, "indicator ring");
+  ring = vk::Buffer(context, bytes<shader::Indicator>(ring_capacity),
+                    kStorage | kTransfer | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::DeviceLocal,
+                    "indicator ring");
   capture = vk::Buffer(context, bytes<shader::Indicator>(capture_capacity), kStorage | kTransfer,
                        vk::MemoryUsage::DeviceLocal, "indicator capture");
   // per layer: SP_COUNTERS_PER_LAYER step counters, then as many (lo, hi) totals
@@ -110,8 +112,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                         vk::MemoryUsage::DeviceLocal, "layer counters");
   admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE), kStorage | kTransfer,
                          vk::MemoryUsage::DeviceLocal, "ring admission histogram");
-  control_readback = vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback,
-                                "control readback");
+  control_readback =
+      vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback, "control readback");
 
   std::vector<shader::Control> initial(1);
   initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
@@ -128,9 +130,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   staging.fill(context, *this);
 
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
-  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes, &triangles, &layers, &step_input, &rays,   &hits,
-                                               &queues, &control,  &ring,   &capture,    &counters,
-                                               &admission, &edges};
+  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,   &triangles, &layers,  &step_input, &rays,      &hits, &queues,
+                                               &control, &ring,      &capture, &counters,   &admission, &edges};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));

@@ -33,13 +33,13 @@ struct GpuResources {
   GpuResources(const GpuResources&) = delete;
   GpuResources& operator=(const GpuResources&) = delete;
 
-  std::uint32_t max_rays = 0;           // rays per step the buffers hold (== ray_budget, at least 1)
-  std::uint32_t capture_capacity = 0;   // indicators one step can create, worst case
-  std::uint32_t ring_capacity = 0;      // max_indicators
+  std::uint32_t max_rays = 0;          // rays per step the buffers hold (== ray_budget, at least 1)
+  std::uint32_t capture_capacity = 0;  // indicators one step can create, worst case
+  std::uint32_t ring_capacity = 0;     // max_indicators
   std::uint32_t layer_count = 0;
-  std::uint32_t iterations = 0;         // wavefront iterations per step
-  std::uint32_t node_capacity = 0;      // BVH nodes the buffer holds (a rebuild may need more than the first build)
-  std::uint32_t source_capacity = 0;    // entries of the step input's source table
+  std::uint32_t iterations = 0;       // wavefront iterations per step
+  std::uint32_t node_capacity = 0;    // BVH nodes the buffer holds (a rebuild may need more than the first build)
+  std::uint32_t source_capacity = 0;  // entries of the step input's source table
 
   vk::Buffer nodes, triangles, layers;  // scene, read-only
   vk::Buffer edges;                     // exposed edges per triangle (one zero entry while diffraction is off)

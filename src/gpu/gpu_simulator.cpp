@@ -59,75 +59,83 @@ class GpuSimulator final : public Simulator {
   std::uint64_t last_step_casts() const override { return last_control_.step_casts; }
 
   Result<bool> step() override {
-    return capture_errors([&] {
-      record_one_step();
-      context_.submit(command_buffer_, fence_.get());
-      VkFence fence = fence_.get();
-      VkResult waited = vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kStepTimeoutNs);
-      if (waited == VK_TIMEOUT) throw Exception(ErrorCode::Vulkan, "a GPU step did not finish within 120 s");
-      SP_VK_CHECK(waited);
-      SP_VK_CHECK(vkResetFences(context_.device(), 1, &fence));
-      std::memcpy(&last_control_, resources_.control_readback.mapped(), sizeof last_control_);
-      read_timestamps();
-      steps_run_ += 1;
-      return true;
-    }, ErrorCode::Vulkan);
+    return capture_errors(
+        [&] {
+          record_one_step();
+          context_.submit(command_buffer_, fence_.get());
+          VkFence fence = fence_.get();
+          VkResult waited = vkWaitForFences(context_.device(), 1, &fence, VK_TRUE, kStepTimeoutNs);
+          if (waited == VK_TIMEOUT) throw Exception(ErrorCode::Vulkan, "a GPU step did not finish within 120 s");
+          SP_VK_CHECK(waited);
+          SP_VK_CHECK(vkResetFences(context_.device(), 1, &fence));
+          std::memcpy(&last_control_, resources_.control_readback.mapped(), sizeof last_control_);
+          read_timestamps();
+          steps_run_ += 1;
+          return true;
+        },
+        ErrorCode::Vulkan);
   }
 
   Result<std::vector<Indicator>> last_step_indicators() override {
-    return capture_errors([&] {
-      std::vector<Indicator> indicators(std::min(last_control_.step_indicators, resources_.capture_capacity));
-      if (!indicators.empty())
-        vk::download(context_, resources_.capture, indicators.data(), indicators.size() * sizeof(Indicator));
-      sort_canonically(indicators);
-      return indicators;
-    }, ErrorCode::Vulkan);
+    return capture_errors(
+        [&] {
+          std::vector<Indicator> indicators(std::min(last_control_.step_indicators, resources_.capture_capacity));
+          if (!indicators.empty())
+            vk::download(context_, resources_.capture, indicators.data(), indicators.size() * sizeof(Indicator));
+          sort_canonically(indicators);
+          return indicators;
+        },
+        ErrorCode::Vulkan);
   }
 
   Result<std::vector<Indicator>> live_indicators() override {
-    return capture_errors([&] {
-      std::vector<Indicator> stored(last_control_.ring_filled);
-      if (!stored.empty())
-        vk::download(context_, resources_.ring, stored.data(), stored.size() * sizeof(Indicator));
-      std::vector<Indicator> live;
-      if (steps_run_ == 0) return live;
-      const Config& config = scene_.world().config;
-      const auto now = static_cast<std::uint32_t>(steps_run_ - 1);
-      for (const Indicator& ind : stored) {
-        // The draw's age and rule (sp_ring.h): what is live is what is drawn.
-        if (shader::sp_indicator_age(now, ind.step, static_cast<float>(config.dt)) < config.indicator_lifetime)
-          live.push_back(ind);
-      }
-      sort_canonically(live);
-      return live;
-    }, ErrorCode::Vulkan);
+    return capture_errors(
+        [&] {
+          std::vector<Indicator> stored(last_control_.ring_filled);
+          if (!stored.empty())
+            vk::download(context_, resources_.ring, stored.data(), stored.size() * sizeof(Indicator));
+          std::vector<Indicator> live;
+          if (steps_run_ == 0) return live;
+          const Config& config = scene_.world().config;
+          const auto now = static_cast<std::uint32_t>(steps_run_ - 1);
+          for (const Indicator& ind : stored) {
+            // The draw's age and rule (sp_ring.h): what is live is what is drawn.
+            if (shader::sp_indicator_age(now, ind.step, static_cast<float>(config.dt)) < config.indicator_lifetime)
+              live.push_back(ind);
+          }
+          sort_canonically(live);
+          return live;
+        },
+        ErrorCode::Vulkan);
   }
 
   Result<SimulationStats> stats() override {
-    return capture_errors([&] {
-      const std::size_t layers = scene_.world().layer_names.size();
-      std::vector<std::uint32_t> counters(layers * SP_COUNTERS_PER_LAYER * 3);
-      if (!counters.empty())
-        vk::download(context_, resources_.counters, counters.data(), counters.size() * sizeof(std::uint32_t));
-      const shader::Control& c = last_control_;
-      SimulationStats stats;
-      stats.steps = c.steps;
-      stats.casts = join64(c.total_casts_lo, c.total_casts_hi);
-      stats.max_casts_per_step = c.max_step_casts;
-      stats.rays_emitted = join64(c.total_rays_lo, c.total_rays_hi);
-      stats.indicators = join64(c.total_indicators_lo, c.total_indicators_hi);
-      const std::size_t totals = layers * SP_COUNTERS_PER_LAYER;
-      for (std::size_t l = 0; l < layers; ++l) {
-        auto total = [&](std::size_t which) {
-          std::size_t k = totals + 2 * (l * SP_COUNTERS_PER_LAYER + which);
-          return join64(counters[k], counters[k + 1]);
-        };
-        stats.layers.push_back({total(SP_COUNTER_HITS), total(SP_COUNTER_REFLECTIONS), total(SP_COUNTER_PENETRATIONS),
-                                total(SP_COUNTER_BACKCAST_MISSES), total(SP_COUNTER_BACK_FACE_HITS),
-                                total(SP_COUNTER_DIFFRACTIONS)});
-      }
-      return stats;
-    }, ErrorCode::Vulkan);
+    return capture_errors(
+        [&] {
+          const std::size_t layers = scene_.world().layer_names.size();
+          std::vector<std::uint32_t> counters(layers * SP_COUNTERS_PER_LAYER * 3);
+          if (!counters.empty())
+            vk::download(context_, resources_.counters, counters.data(), counters.size() * sizeof(std::uint32_t));
+          const shader::Control& c = last_control_;
+          SimulationStats stats;
+          stats.steps = c.steps;
+          stats.casts = join64(c.total_casts_lo, c.total_casts_hi);
+          stats.max_casts_per_step = c.max_step_casts;
+          stats.rays_emitted = join64(c.total_rays_lo, c.total_rays_hi);
+          stats.indicators = join64(c.total_indicators_lo, c.total_indicators_hi);
+          const std::size_t totals = layers * SP_COUNTERS_PER_LAYER;
+          for (std::size_t l = 0; l < layers; ++l) {
+            auto total = [&](std::size_t which) {
+              std::size_t k = totals + 2 * (l * SP_COUNTERS_PER_LAYER + which);
+              return join64(counters[k], counters[k + 1]);
+            };
+            stats.layers.push_back({total(SP_COUNTER_HITS), total(SP_COUNTER_REFLECTIONS),
+                                    total(SP_COUNTER_PENETRATIONS), total(SP_COUNTER_BACKCAST_MISSES),
+                                    total(SP_COUNTER_BACK_FACE_HITS), total(SP_COUNTER_DIFFRACTIONS)});
+          }
+          return stats;
+        },
+        ErrorCode::Vulkan);
   }
 
   IndicatorView view() { return engine_.view(); }
@@ -190,9 +198,11 @@ std::optional<IndicatorView> indicator_view(Simulator& simulator) {
 }
 
 Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context) {
-  return capture_errors([&]() -> std::unique_ptr<Simulator> {
-    return std::make_unique<GpuSimulator>(std::move(world), context, nullptr);
-  }, ErrorCode::Vulkan);
+  return capture_errors(
+      [&]() -> std::unique_ptr<Simulator> {
+        return std::make_unique<GpuSimulator>(std::move(world), context, nullptr);
+      },
+      ErrorCode::Vulkan);
 }
 
 }  // namespace sp::gpu
@@ -200,18 +210,20 @@ Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& co
 namespace sp {
 
 Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSettings& settings) {
-  return capture_errors([&]() -> std::unique_ptr<Simulator> {
-    vk::ContextSettings context_settings;
-    context_settings.validation = settings.validation;
-    context_settings.device_name = settings.device_name;
-    std::unique_ptr<vk::Context> context = vk::Context::create(context_settings).value();
-    if (!settings.allow_cpu_device && context->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
-      throw Exception(ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
-                                             std::string(context->properties().deviceName) + ")");
-    check_memory_budget(world.config, Backend::Gpu, settings.memory_budget_bytes);  // before any buffer exists
-    vk::Context& ref = *context;
-    return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
-  }, ErrorCode::Vulkan);
+  return capture_errors(
+      [&]() -> std::unique_ptr<Simulator> {
+        vk::ContextSettings context_settings;
+        context_settings.validation = settings.validation;
+        context_settings.device_name = settings.device_name;
+        std::unique_ptr<vk::Context> context = vk::Context::create(context_settings).value();
+        if (!settings.allow_cpu_device && context->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+          throw Exception(ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +
+                                                 std::string(context->properties().deviceName) + ")");
+        check_memory_budget(world.config, Backend::Gpu, settings.memory_budget_bytes);  // before any buffer exists
+        vk::Context& ref = *context;
+        return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
+      },
+      ErrorCode::Vulkan);
 }
 
 }  // namespace sp

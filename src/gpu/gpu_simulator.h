@@ -26,9 +26,9 @@ Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, Wor
 // a draw recorded after Simulator::step() returned sees that step's state.
 struct IndicatorView {
   vk::Context* context = nullptr;
-  VkBuffer ring = VK_NULL_HANDLE;          // STORAGE_BUFFER, ring_capacity entries
+  VkBuffer ring = VK_NULL_HANDLE;  // STORAGE_BUFFER, ring_capacity entries
   std::uint32_t ring_capacity = 0;
-  VkBuffer draw_args = VK_NULL_HANDLE;     // INDIRECT_BUFFER
+  VkBuffer draw_args = VK_NULL_HANDLE;  // INDIRECT_BUFFER
   VkDeviceSize draw_args_offset = 0;
 };
 

@@ -82,8 +82,8 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
 
   // RAW: the ring and the draw arguments the last prepare wrote reach the
   // indicator draw (and the readback copy).
-  VkAccessFlags2 readers = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT |
-                           VK_ACCESS_2_TRANSFER_READ_BIT;
+  VkAccessFlags2 readers =
+      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT;
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages, readers);
   if (options.readback_control) {
@@ -108,8 +108,7 @@ void StepEngine::record_geometry_changes(VkCommandBuffer cmd, const World& world
   const Bvh& bvh = world.geometry->bvh;
   if (bvh.nodes.size() > resources_.node_capacity)
     throw std::logic_error("a BVH rebuild made " + std::to_string(bvh.nodes.size()) +
-                                             " nodes, more than the buffer's " +
-                                             std::to_string(resources_.node_capacity));
+                           " nodes, more than the buffer's " + std::to_string(resources_.node_capacity));
   for (const BvhIndexRange& range : changes.nodes) {
     vk::record_update(cmd, resources_.nodes, range.first * sizeof(BvhNode), &bvh.nodes[range.first],
                       (range.last - range.first) * sizeof(BvhNode));

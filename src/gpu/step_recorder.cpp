@@ -64,17 +64,15 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, StageQue
   // phase reading what the one before wrote. The histogram and copy phases
   // run over the capture list; the planning ones are a single thread.
   const VkDeviceSize admit_args = offsetof(shader::Control, admit_group_count_x);
-  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM,        SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
+  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM,       SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
                                   SP_ADMIT_TIEBREAK_SELECT, SP_ADMIT_COPY,   SP_ADMIT_FINISH};
   for (std::uint32_t phase : phases) {
     if (phase != SP_ADMIT_HISTOGRAM) vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.admit, 0, phase);
     const bool over_capture =
         phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM || phase == SP_ADMIT_COPY;
-    if (over_capture)
-      vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
-    else
-      vkCmdDispatch(cmd, 1, 1, 1);
+    if (over_capture) vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
+    else vkCmdDispatch(cmd, 1, 1, 1);
   }
   stamp(StageKernel::Admit);
 }

@@ -35,64 +35,72 @@ struct IndicatorCsvWriter::Impl {
 IndicatorCsvWriter::IndicatorCsvWriter() = default;
 
 Result<std::unique_ptr<IndicatorCsvWriter>> IndicatorCsvWriter::open(const std::filesystem::path& path) {
-  return capture_errors([&] {
-    std::unique_ptr<IndicatorCsvWriter> writer(new IndicatorCsvWriter());
-    writer->impl_ = std::make_unique<Impl>(path);
-    writer->impl_->file.write(std::string(kIndicatorCsvHeader) + "\n");
-    return writer;
-  }, ErrorCode::Io);
+  return capture_errors(
+      [&] {
+        std::unique_ptr<IndicatorCsvWriter> writer(new IndicatorCsvWriter());
+        writer->impl_ = std::make_unique<Impl>(path);
+        writer->impl_->file.write(std::string(kIndicatorCsvHeader) + "\n");
+        return writer;
+      },
+      ErrorCode::Io);
 }
 
 IndicatorCsvWriter::~IndicatorCsvWriter() = default;
 
 Result<bool> IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
-  return capture_errors([&] {
-  std::string& out = impl_->buffer;
-  out.clear();
-  for (const Indicator& ind : indicators) {
-    append_uint(out, ind.step);
-    out += ind.kind == SP_INDICATOR_HIT ? "hit," : "exit,";
-    append_uint(out, ind.source_id);
-    append_float(out, ind.position.x);
-    append_float(out, ind.position.y);
-    append_float(out, ind.position.z);
-    append_float(out, ind.normal.x);
-    append_float(out, ind.normal.y);
-    append_float(out, ind.normal.z);
-    append_float(out, ind.energy);
-    append_uint(out, ind.bounces);
-    append_uint(out, ind.penetrations);
-    append_float(out, ind.path_length);
-    append_float(out, ind.intensity);
-    append_float(out, ind.size);
-    append_float(out, ind.color.x);
-    append_float(out, ind.color.y);
-    append_float(out, ind.color.z);
-    append_float(out, ind.dir.x);
-    append_float(out, ind.dir.y);
-    append_float(out, ind.dir.z);
-    append_uint(out, ind.diffractions);
-    out.back() = '\n';
-  }
-  impl_->file.write(out);
-  return true;
-  }, ErrorCode::Io);
+  return capture_errors(
+      [&] {
+        std::string& out = impl_->buffer;
+        out.clear();
+        for (const Indicator& ind : indicators) {
+          append_uint(out, ind.step);
+          out += ind.kind == SP_INDICATOR_HIT ? "hit," : "exit,";
+          append_uint(out, ind.source_id);
+          append_float(out, ind.position.x);
+          append_float(out, ind.position.y);
+          append_float(out, ind.position.z);
+          append_float(out, ind.normal.x);
+          append_float(out, ind.normal.y);
+          append_float(out, ind.normal.z);
+          append_float(out, ind.energy);
+          append_uint(out, ind.bounces);
+          append_uint(out, ind.penetrations);
+          append_float(out, ind.path_length);
+          append_float(out, ind.intensity);
+          append_float(out, ind.size);
+          append_float(out, ind.color.x);
+          append_float(out, ind.color.y);
+          append_float(out, ind.color.z);
+          append_float(out, ind.dir.x);
+          append_float(out, ind.dir.y);
+          append_float(out, ind.dir.z);
+          append_uint(out, ind.diffractions);
+          out.back() = '\n';
+        }
+        impl_->file.write(out);
+        return true;
+      },
+      ErrorCode::Io);
 }
 
 Result<bool> IndicatorCsvWriter::commit() {
-  return capture_errors([&] {
-    impl_->file.commit();
-    return true;
-  }, ErrorCode::Io);
+  return capture_errors(
+      [&] {
+        impl_->file.commit();
+        return true;
+      },
+      ErrorCode::Io);
 }
 
 Result<bool> write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  return capture_errors([&] {
-    AtomicFile file(path);
-    file.write(text);
-    file.commit();
-    return true;
-  }, ErrorCode::Io);
+  return capture_errors(
+      [&] {
+        AtomicFile file(path);
+        file.write(text);
+        file.commit();
+        return true;
+      },
+      ErrorCode::Io);
 }
 
 }  // namespace sp

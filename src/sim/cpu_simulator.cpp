@@ -72,7 +72,8 @@ class CpuSimulator final : public Simulator {
       const std::uint64_t step = steps_run_;
       (void)detail::SoundSceneBackend::update_geometry(scene_);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
-      runner_.run(scene_.world().geometry->bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_);
+      runner_.run(scene_.world().geometry->bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step),
+                  last_);
       ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
@@ -103,7 +104,8 @@ class CpuSimulator final : public Simulator {
 
 Result<std::unique_ptr<Simulator>> create_cpu_simulator(World world, const CpuSettings& settings) {
   return capture_errors([&]() -> std::unique_ptr<Simulator> {
-    if (world.geometry->bvh.nodes.empty()) throw Exception(ErrorCode::InvalidArgument, "create_cpu_simulator: the world has no BVH");
+    if (world.geometry->bvh.nodes.empty())
+      throw Exception(ErrorCode::InvalidArgument, "create_cpu_simulator: the world has no BVH");
     check_memory_budget(world.config, Backend::Cpu, settings.memory_budget_bytes);
     return std::make_unique<CpuSimulator>(std::move(world), settings);
   });

@@ -17,7 +17,7 @@ namespace sp {
 
 struct CpuStepOutput {
   std::vector<shader::Indicator> indicators;  // canonical order: iteration, then ray index
-  TraceCounters counters;             // summed over the workers
+  TraceCounters counters;                     // summed over the workers
 };
 
 class CpuStepRunner {

@@ -20,7 +20,8 @@ float inverse_indicator_size(const Config& config) {
   return config.indicator_size > 0.0f ? 1.0f / config.indicator_size : 0.0f;
 }
 
-std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota, float inverse_indicator_size) {
+std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota,
+                                     float inverse_indicator_size) {
   if (step.size() <= quota) return {step.begin(), step.end()};
   // The GPU's admit.comp, phase by phase, over one buffer of the same shape.
   std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer{};

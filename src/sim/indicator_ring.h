@@ -30,7 +30,8 @@ float inverse_indicator_size(const Config& config);
 // The indicators of `step` (in canonical order) that the ring admits, in
 // that order: those whose admission bin is at or above the threshold that
 // keeps them within `quota` (sp_admission_threshold).
-std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota, float inverse_indicator_size);
+std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota,
+                                     float inverse_indicator_size);
 
 class IndicatorRing {
  public:

@@ -29,7 +29,8 @@ constexpr double kRebuildCostRatio = 2.0;
 double absolute_sah_cost(const Bvh& bvh) {
   if (bvh.nodes.empty()) return 0.0;
   const glm::vec3 e = bvh.nodes[0].bmax - bvh.nodes[0].bmin;
-  const double half_area = static_cast<double>(e.x) * e.y + static_cast<double>(e.y) * e.z + static_cast<double>(e.z) * e.x;
+  const double half_area =
+      static_cast<double>(e.x) * e.y + static_cast<double>(e.y) * e.z + static_cast<double>(e.z) * e.x;
   return bvh_sah_cost(bvh) * std::max(half_area, 1e-12);
 }
 
@@ -49,7 +50,8 @@ SoundScene::SoundScene(World world) : world_(std::move(world)) {
   if (world_.source_colors.size() != world_.sources.size() || world_.category_names.empty())
     resolve_all_source_display(world_);
   capacity_ = std::max<std::uint32_t>(kDefaultSourceCapacity, static_cast<std::uint32_t>(world_.sources.size()));
-  active_count_ = static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));
+  active_count_ =
+      static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));
   play_windows_.resize(world_.sources.size());
   one_shot_.resize(world_.sources.size(), false);
   if (!world_.instance_names.empty()) world_.geometry->build_sah_cost = absolute_sah_cost(world_.geometry->bvh);
@@ -73,8 +75,9 @@ Result<std::uint32_t> SoundScene::add_source(const SourceDesc& source) { return 
 
 Result<std::uint32_t> SoundScene::add_slot(const char* what, const SourceDesc& source) {
   if (active_count_ >= capacity_)
-    return Error{ErrorCode::LimitExceeded, std::string(what) + ": all " + std::to_string(capacity_) +
-                                               " source slots are in use; remove one first", 0};
+    return Error{
+        ErrorCode::LimitExceeded,
+        std::string(what) + ": all " + std::to_string(capacity_) + " source slots are in use; remove one first", 0};
   const auto free_slot = std::find(world_.source_active.begin(), world_.source_active.end(), false);
   const auto id = static_cast<std::uint32_t>(free_slot - world_.source_active.begin());
   auto checked = capture_errors([&] {
@@ -118,10 +121,12 @@ Result<bool> SoundScene::update_source(std::uint32_t id, const SourceDesc& sourc
 }
 
 Result<bool> SoundScene::set_display(const DisplaySettings& settings) {
-  auto checked = capture_errors([&] {
-    check_display_settings(settings);
-    return true;
-  }, ErrorCode::InvalidConfig);
+  auto checked = capture_errors(
+      [&] {
+        check_display_settings(settings);
+        return true;
+      },
+      ErrorCode::InvalidConfig);
   if (!checked) return checked.error();
   world_.config.display = settings;
   for (std::uint32_t id = 0; id < world_.sources.size(); ++id) resolve_source_display(world_, id);
@@ -192,10 +197,9 @@ BvhChanges SoundScene::update_geometry() {
   for (std::size_t tri = 0; tri < world_.geometry->triangle_instances.size(); ++tri) {
     const std::uint32_t instance = world_.geometry->triangle_instances[tri];
     for (std::size_t k = 3 * tri; k < 3 * tri + 3; ++k) {
-      vertices[k] = instance == kStaticInstance
-                        ? world_.geometry->rest_vertices[k]
-                        : glm::vec3(to_glm(world_.instance_transforms[instance]) *
-                                    glm::vec4(world_.geometry->rest_vertices[k], 1.0f));
+      vertices[k] = instance == kStaticInstance ? world_.geometry->rest_vertices[k]
+                                                : glm::vec3(to_glm(world_.instance_transforms[instance]) *
+                                                            glm::vec4(world_.geometry->rest_vertices[k], 1.0f));
     }
   }
   BvhChanges changes = refit_bvh(world_.geometry->bvh, vertices).value();

@@ -141,7 +141,8 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
       world.instance_transforms.assign(scene.instance_names.size(), Mat4{});
       world.geometry->rest_vertices = std::move(vertices);
       world.geometry->triangle_instances = scene.triangle_instances;
-      if (world.geometry->triangle_instances.empty()) world.geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+      if (world.geometry->triangle_instances.empty())
+        world.geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
       world.geometry->triangle_layers = scene.triangle_layers;
       world.geometry->triangle_solids = std::move(topology.triangle_solids);
     }

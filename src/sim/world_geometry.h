@@ -17,7 +17,7 @@ namespace sp::detail {
 struct WorldGeometry {
   Bvh bvh;
   // Moving parts only (empty when the scene has none):
-  std::vector<glm::vec3> rest_vertices;               // scene's vertices, 3 per triangle
+  std::vector<glm::vec3> rest_vertices;           // scene's vertices, 3 per triangle
   std::vector<std::uint32_t> triangle_instances;  // per triangle, or kStaticInstance
   std::vector<std::uint32_t> triangle_layers;     // per triangle (scene order), for rebuilds
   std::vector<std::uint32_t> triangle_solids;     // per triangle (scene order), for rebuilds

@@ -33,9 +33,9 @@ struct PanelStats {
   double indicators_ms = 0;
   // The simulation's stages (sp::Visualizer::stage_timings): GPU time per
   // kernel on the GPU backend, the worker's step time on the CPU backend.
-  std::vector<std::pair<std::string, double>> stages;  // GPU time of the indicator pass
+  std::vector<std::pair<std::string, double>> stages;                    // GPU time of the indicator pass
   std::uint64_t steps = 0, casts = 0, rays_emitted = 0, indicators = 0;  // totals so far
-  std::uint32_t live_indicators = 0;  // ring slots filled
+  std::uint32_t live_indicators = 0;                                     // ring slots filled
   // Whether the counts above are known (after the first frame's fence).
   bool totals_known = false;
   bool paused = false;

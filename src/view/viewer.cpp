@@ -120,20 +120,20 @@ Painting paint(vk::Context& context, const Swapchain& swapchain, Session& sessio
 // The scene pass clears and writes depth; the indicator pass then tests
 // against it and samples it read-only (clipping spots to surfaces).
 void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_view, VkExtent2D extent, bool first) {
-  VkRenderingAttachmentInfo color = draw::attachment(
-      {color_view, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-       first ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE});
+  VkRenderingAttachmentInfo color = draw::attachment({color_view, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                                      first ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD,
+                                                      VK_ATTACHMENT_STORE_OP_STORE});
   // The scene pass's clear colour is linear, as the sRGB swapchain expects.
   std::memcpy(color.clearValue.color.float32, draw::ScenePass::kClearColor, sizeof(float) * 4);
-  VkRenderingAttachmentInfo depth = draw::attachment(
-      first ? draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_CLEAR,
-                                  VK_ATTACHMENT_STORE_OP_STORE}
-            : draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD,
-                                  VK_ATTACHMENT_STORE_OP_NONE});
+  VkRenderingAttachmentInfo depth =
+      draw::attachment(first ? draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                                                   VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE}
+                             : draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+                                                   VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_NONE});
   depth.clearValue.depthStencil = {1.0f, 0};
   draw::begin_rendering(cmd, extent, color, depth);
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height), 0.0f,
-                            1.0f};
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                            0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -170,7 +170,7 @@ class Viewer {
   std::array<bool, kFramesInFlight> submitted_{};
   vk::UniqueQueryPool queries_;
   std::array<vk::Buffer, kFramesInFlight> totals_;  // record_totals' copy, read after the slot's fence
-  double timestamp_ms_ = 0.0;  // milliseconds per timestamp tick
+  double timestamp_ms_ = 0.0;                       // milliseconds per timestamp tick
   vk::Buffer screenshot_buffer_;
   VkExtent2D screenshot_extent_{};
   Painting painting_;
@@ -415,8 +415,8 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
   if (screenshot) {
     screenshot_extent_ = extent;
     const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
-    screenshot_buffer_ = vk::Buffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback,
-                                    "viewer screenshot");
+    screenshot_buffer_ =
+        vk::Buffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback, "viewer screenshot");
     // RAW: the passes' colour writes land before the copy reads the image.
     draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -427,11 +427,10 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
     region.imageExtent = {extent.width, extent.height, 1};
     vkCmdCopyImageToBuffer(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshot_buffer_.get(), 1, &region);
     // Device -> host: the copy is visible to host reads after the fence.
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_HOST_READ_BIT);
     draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
-                        VK_PIPELINE_STAGE_2_NONE, 0);
+                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_NONE, 0);
   } else {
     // Presentation waits on the semaphore the submit signals after this.
     draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -553,8 +552,11 @@ void Viewer::run() {
     const StageTimings stages = visualizer.stage_timings();
     stats_.stages.clear();
     if (stages.measured && visualizer.backend() == Backend::Gpu) {
-      stats_.stages = {{"emit", stages.emit_ms},       {"trace", stages.trace_ms}, {"resolve", stages.resolve_ms},
-                       {"prepare", stages.prepare_ms}, {"admit", stages.admit_ms}};
+      stats_.stages = {{"emit", stages.emit_ms},
+                       {"trace", stages.trace_ms},
+                       {"resolve", stages.resolve_ms},
+                       {"prepare", stages.prepare_ms},
+                       {"admit", stages.admit_ms}};
     } else if (stages.measured) {
       stats_.stages = {{"cpu step", stages.cpu_step_ms}};
     }

@@ -25,7 +25,7 @@ struct ViewerOptions {
   // scripted run); 0: run in real time until the window closes.
   std::uint64_t frames = 0;
   std::optional<std::filesystem::path> screenshot;  // the last frame, as PNG
-  bool panel = true;  // false: start with the panel hidden (F1 shows it)
+  bool panel = true;                                // false: start with the panel hidden (F1 shows it)
   draw::CameraOverrides camera;
   // Scripted runs: at frame `resize_frame` (> 0) the window asks for
   // resize_width x resize_height, as a user dragging its border would.

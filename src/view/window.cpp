@@ -69,7 +69,8 @@ VkSurfaceKHR Window::create_surface(VkInstance instance) const {
   VkSurfaceKHR surface = VK_NULL_HANDLE;
   const VkResult result = glfwCreateWindowSurface(instance, window_, nullptr, &surface);
   if (result != VK_SUCCESS)
-    throw Exception(Error{ErrorCode::Vulkan, "view: cannot create a Vulkan surface for the window (" + glfw_error() + ")",
+    throw Exception(Error{ErrorCode::Vulkan,
+                          "view: cannot create a Vulkan surface for the window (" + glfw_error() + ")",
                           static_cast<int>(result)});
   return surface;
 }

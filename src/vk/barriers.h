@@ -33,8 +33,8 @@ inline void pipeline_barrier(VkCommandBuffer cmd, const VkMemoryBarrier2* memory
 
 inline void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                            VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  const auto barrier = stage_barrier<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, src_stage, src_access,
-                                                       dst_stage, dst_access);
+  const auto barrier =
+      stage_barrier<VkMemoryBarrier2>(VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, src_stage, src_access, dst_stage, dst_access);
   pipeline_barrier(cmd, &barrier, nullptr);
 }
 

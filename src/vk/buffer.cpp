@@ -164,8 +164,7 @@ void download(Context& context, const Buffer& source, void* out, VkDeviceSize si
 void record_update(VkCommandBuffer cmd, const Buffer& destination, VkDeviceSize offset, const void* bytes,
                    VkDeviceSize size) {
   check_range(destination, size, offset, "record_update");
-  if (offset % 4 != 0 || size % 4 != 0)
-    throw std::logic_error("record_update: offset and size must be multiples of 4");
+  if (offset % 4 != 0 || size % 4 != 0) throw std::logic_error("record_update: offset and size must be multiples of 4");
   // vkCmdUpdateBuffer takes at most 65536 bytes per call.
   constexpr VkDeviceSize kMaxUpdate = 65536;
   const auto* data = static_cast<const std::byte*>(bytes);

@@ -24,8 +24,8 @@ StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_c
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   }
   layout_ = create_descriptor_set_layout(context, bindings, (label + " layout").c_str());
-  pool_ = create_descriptor_pool(context, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count, 1,
-                                 (label + " pool").c_str());
+  pool_ =
+      create_descriptor_pool(context, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count, 1, (label + " pool").c_str());
   set_ = allocate_descriptor_set(context, pool_.get(), layout_.get(), label.c_str());
 }
 

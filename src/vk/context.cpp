@@ -154,10 +154,12 @@ std::string missing_enabled_features(const void* chain) {
         break;
       }
       case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
-        enabled.synchronization2 |= reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(node)->synchronization2;
+        enabled.synchronization2 |=
+            reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(node)->synchronization2;
         break;
       case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
-        enabled.dynamicRendering |= reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(node)->dynamicRendering;
+        enabled.dynamicRendering |=
+            reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(node)->dynamicRendering;
         break;
       case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
         enabled.maintenance4 |= reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(node)->maintenance4;
@@ -191,7 +193,8 @@ std::string missing_subgroup_support(const VkPhysicalDeviceSubgroupProperties& s
                     {VK_SUBGROUP_FEATURE_BALLOT_BIT, " ballot"},
                     {VK_SUBGROUP_FEATURE_ARITHMETIC_BIT, " arithmetic"}};
   for (const auto& operation : operations)
-    if ((subgroup.supportedOperations & operation.bit) == 0) missing += std::string(operation.name) + " subgroup operations";
+    if ((subgroup.supportedOperations & operation.bit) == 0)
+      missing += std::string(operation.name) + " subgroup operations";
   return missing;
 }
 
@@ -250,12 +253,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
           std::vector<VkExtensionProperties> available(count);
           SP_VK_CHECK(vkEnumerateDeviceExtensionProperties(choice.device, nullptr, &count, available.data()));
           for (const std::string& name : settings.device_extensions) {
-            const bool found = std::any_of(available.begin(), available.end(), [&](const VkExtensionProperties& e) {
-              return name == e.extensionName;
-            });
+            const bool found = std::any_of(available.begin(), available.end(),
+                                           [&](const VkExtensionProperties& e) { return name == e.extensionName; });
             if (!found)
-              throw Exception(ErrorCode::Vulkan, std::string(context->properties_.deviceName) +
-                                                     " lacks the device extension " + name);
+              throw Exception(ErrorCode::Vulkan,
+                              std::string(context->properties_.deviceName) + " lacks the device extension " + name);
             device_extensions.push_back(name.c_str());
           }
         }
@@ -271,9 +273,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         context->set_name(VK_OBJECT_TYPE_DEVICE, context->device_, "soundpaint device");
         context->set_name(VK_OBJECT_TYPE_QUEUE, context->queue_, "soundpaint queue");
 
-        context->one_time_pool_ = create_command_pool(*context, choice.queue_family,
-                                                      VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
-                                                      "soundpaint one-time commands");
+        context->one_time_pool_ =
+            create_command_pool(*context, choice.queue_family, VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                "soundpaint one-time commands");
         return context;
       },
       ErrorCode::Vulkan);
@@ -316,16 +318,18 @@ Result<std::unique_ptr<Context>> Context::borrow(const HostVulkan& host) {
         context->query_device_properties();
         const std::string name = context->properties_.deviceName;
         if (context->properties_.apiVersion < VK_API_VERSION_1_3)
-          throw Exception(ErrorCode::Vulkan, name + " supports Vulkan " +
-                                                 std::to_string(VK_API_VERSION_MAJOR(context->properties_.apiVersion)) +
-                                                 "." + std::to_string(VK_API_VERSION_MINOR(context->properties_.apiVersion)) +
-                                                 "; soundpaint needs 1.3");
+          throw Exception(
+              ErrorCode::Vulkan,
+              name + " supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(context->properties_.apiVersion)) + "." +
+                  std::to_string(VK_API_VERSION_MINOR(context->properties_.apiVersion)) + "; soundpaint needs 1.3");
         require_features(host.physical_device, name.c_str(), false);
         if (host.enabled_features != nullptr) {
           const std::string missing = missing_enabled_features(host.enabled_features);
           if (!missing.empty())
-            throw Exception(ErrorCode::Vulkan, "the host's VkDevice was created without Vulkan 1.3 features soundpaint "
-                                               "needs (enable them in VkDeviceCreateInfo::pNext):" + missing);
+            throw Exception(ErrorCode::Vulkan,
+                            "the host's VkDevice was created without Vulkan 1.3 features soundpaint "
+                            "needs (enable them in VkDeviceCreateInfo::pNext):" +
+                                missing);
         }
 
         std::uint32_t family_count = 0;
@@ -335,11 +339,12 @@ Result<std::unique_ptr<Context>> Context::borrow(const HostVulkan& host) {
         for (std::uint32_t family : {host.queue_family, host.compute_queue_family}) {
           if (family == VK_QUEUE_FAMILY_IGNORED) continue;  // no async compute queue
           if (family >= family_count)
-            throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) + " does not exist on " +
-                                                            name + " (it has " + std::to_string(family_count) + ")");
+            throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) +
+                                                            " does not exist on " + name + " (it has " +
+                                                            std::to_string(family_count) + ")");
           if ((families[family].queueFlags & VK_QUEUE_COMPUTE_BIT) == 0)
-            throw Exception(ErrorCode::InvalidArgument, "queue family " + std::to_string(family) + " of " + name +
-                                                            " cannot run compute work");
+            throw Exception(ErrorCode::InvalidArgument,
+                            "queue family " + std::to_string(family) + " of " + name + " cannot run compute work");
           if (std::find(context->sharing_families_.begin(), context->sharing_families_.end(), family) ==
               context->sharing_families_.end())
             context->sharing_families_.push_back(family);

@@ -19,8 +19,8 @@ namespace sp::vk {
 
 // `create` is a vkCreate* taking (device, info, allocator, out handle).
 template <class Object, class Info, class Handle>
-Object create_object(const Context& context, VkResult(VKAPI_PTR* create)(VkDevice, const Info*,
-                                                                          const VkAllocationCallbacks*, Handle*),
+Object create_object(const Context& context,
+                     VkResult(VKAPI_PTR* create)(VkDevice, const Info*, const VkAllocationCallbacks*, Handle*),
                      const Info& info, VkObjectType type, const char* name) {
   Handle raw = VK_NULL_HANDLE;
   const VkResult result = create(context.device(), &info, context.allocator(), &raw);
@@ -33,8 +33,7 @@ Object create_object(const Context& context, VkResult(VKAPI_PTR* create)(VkDevic
 }
 
 // Throws sp::Exception (InvalidArgument) when `spirv` is empty.
-UniqueShaderModule create_shader_module(const Context& context, std::span<const std::uint32_t> spirv,
-                                        const char* name);
+UniqueShaderModule create_shader_module(const Context& context, std::span<const std::uint32_t> spirv, const char* name);
 
 UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
                                                        std::span<const VkDescriptorSetLayoutBinding> bindings,

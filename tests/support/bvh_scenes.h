@@ -91,7 +91,8 @@ inline void add_sphere(Soup& soup, vec3 centre, float radius, int n) {
         for (int i = 0; i < n; ++i)
           for (int j = 0; i + j < n; ++j) {
             soup.tri(point(a, b, c, i, j), point(a, b, c, i + 1, j), point(a, b, c, i, j + 1));
-            if (i + j + 1 < n) soup.tri(point(a, b, c, i + 1, j), point(a, b, c, i + 1, j + 1), point(a, b, c, i, j + 1));
+            if (i + j + 1 < n)
+              soup.tri(point(a, b, c, i + 1, j), point(a, b, c, i + 1, j + 1), point(a, b, c, i, j + 1));
           }
       }
 }
