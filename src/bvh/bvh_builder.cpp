@@ -89,15 +89,13 @@ struct Binning {
       float extent = centroids.hi[a] - centroids.lo[a];
       float s = static_cast<float>(bins) / extent;
       // A zero or subnormal extent cannot be binned (and would make NaNs).
-      scale[a] = (extent > 0.0f && std::isfinite(s)) ? s : 0.0f;
+      scale.set(a, (extent > 0.0f && std::isfinite(s)) ? s : 0.0f);
     }
   }
   // Bins on all three axes at once. (c - origin) * scale lies in
   // [0, bins * (1 + rounding)]; the top edge goes to the last bin. Clamped
   // in float, where SSE2 has a vector min (minps) and integers have none.
-  Int4 bin(Vec4 doubled_centroid) const {
-    return __builtin_convertvector(vmin((doubled_centroid - origin) * scale, last), Int4);
-  }
+  Int4 bin(Vec4 doubled_centroid) const { return to_int4(vmin((doubled_centroid - origin) * scale, last)); }
 };
 
 // The best split found for a node.
@@ -457,8 +455,8 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
     for (std::uint32_t i = first; i < last; ++i) {
       if (i + kPrefetch < last) {
         const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
-        __builtin_prefetch(ahead);
-        __builtin_prefetch(ahead + 2);
+        prefetch(ahead);
+        prefetch(ahead + 2);
       }
       const std::uint32_t source = order[i];
       const std::uint32_t solid = source < solids.size() ? solids[source] : source;

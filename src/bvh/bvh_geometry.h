@@ -8,17 +8,12 @@
 #include <glm/vec3.hpp>
 
 #include "bvh/bvh.h"
+#include "bvh/simd4.h"
 
 namespace sp {
 
-// GCC/Clang vector extensions: one SSE/NEON register per box corner, without
-// tying the builder to one instruction set. Lane 3 is always 0.
-using Vec4 = float __attribute__((vector_size(16)));
-using Int4 = std::int32_t __attribute__((vector_size(16)));
-
-// Written as selects so that they compile to minps/maxps.
-inline Vec4 vmin(Vec4 a, Vec4 b) { return a < b ? a : b; }
-inline Vec4 vmax(Vec4 a, Vec4 b) { return a > b ? a : b; }
+// One SSE/NEON register per box corner (simd4.h: Vec4, vmin = a < b ? a : b,
+// vmax = a > b ? a : b). Lane 3 is always 0.
 inline Vec4 to_vec4(glm::vec3 v) { return Vec4{v.x, v.y, v.z, 0.0f}; }
 inline glm::vec3 to_vec3(Vec4 v) { return glm::vec3(v[0], v[1], v[2]); }
 
@@ -42,7 +37,7 @@ struct Box {
 // Half the surface area: the SAH only compares ratios. Requires a non-empty box.
 inline float half_area(const Box& b) {
   const Vec4 d = b.hi - b.lo;
-  const Vec4 p = d * __builtin_shufflevector(d, d, 1, 2, 0, 3);  // dx dy, dy dz, dz dx, 0
+  const Vec4 p = d * shuffle_yzxw(d);  // dx dy, dy dz, dz dx, 0
   return p[0] + p[1] + p[2];
 }
 

@@ -1,9 +1,8 @@
 // Collapse of the binary BVH into 4-wide nodes and their single-ray SIMD
 // traversal; see wide_bvh.h for the references and the node layout.
 //
-// Written with GCC/Clang vector extensions (one SSE2 register per Vec4 on
-// x86-64, NEON elsewhere), as bvh_geometry.h is; only the lane mask uses an
-// x86 intrinsic when there is one.
+// Written with simd4.h's Vec4 and Int4 (one SSE2 register per Vec4 on
+// x86, NEON on ARM, four scalar lanes elsewhere), as bvh_geometry.h is.
 #include "bvh/wide_bvh.h"
 
 #include <algorithm>
@@ -13,12 +12,6 @@
 
 #include "sp_traverse.h"
 
-#if defined(__SSE__)
-#include <xmmintrin.h>
-
-#include <glm/glm.hpp>
-#endif
-
 namespace sp {
 namespace {
 
@@ -27,17 +20,6 @@ constexpr float kBoxMargin = 1.0000004f;
 // A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
-
-inline Vec4 splat(float x) { return Vec4{x, x, x, x}; }
-
-// Bit i set where lane i of the comparison result is true.
-inline unsigned lane_mask(Int4 m) {
-#if defined(__SSE__)
-  return static_cast<unsigned>(_mm_movemask_ps(std::bit_cast<__m128>(m)));
-#else
-  return static_cast<unsigned>((m[0] & 1) | (m[1] & 2) | (m[2] & 4) | (m[3] & 8));
-#endif
-}
 
 // ---------------------------------------------------------------- collapse
 
@@ -68,8 +50,8 @@ class Collapser {
   void fill_slot(WideNode& node, std::uint32_t slot, std::uint32_t binary) {
     const BvhNode& n = bvh_.nodes[binary];
     for (int a = 0; a < 3; ++a) {
-      node.bounds[a][slot] = n.bmin[a];
-      node.bounds[3 + a][slot] = n.bmax[a];
+      node.bounds[a].set(static_cast<int>(slot), n.bmin[a]);
+      node.bounds[3 + a].set(static_cast<int>(slot), n.bmax[a]);
     }
     if (n.count > 0u)
       node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), (n.count + kWideArity - 1u) / kWideArity};
@@ -117,7 +99,7 @@ class Collapser {
         const BvhTriangle& t = bvh_.triangles[i];
         const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
         for (int k = 0; k < 3; ++k)
-          for (int a = 0; a < 3; ++a) p.v[k][a][lane] = v[k][a];
+          for (int a = 0; a < 3; ++a) p.v[k][a].set(static_cast<int>(lane), v[k][a]);
         p.triangle[lane] = i;
       }
       wide_.packets.push_back(p);
@@ -195,7 +177,7 @@ inline unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const 
     exit[a] = (plane(node, r.exit_plane[a]) - r.origin[a]) * r.inv_dir[a];
     if (kParallel && (parallel & (1u << a))) {  // a ray inside the slab never leaves it
       const Int4 inside = (node.bounds[a] <= r.origin[a]) & (r.origin[a] <= node.bounds[3 + a]);
-      exit[a] = inside ? splat(SP_FAR) : exit[a];
+      exit[a] = select(inside, splat(SP_FAR), exit[a]);
     }
   }
   // Two levels of min/max rather than a chain of three: a shorter latency
@@ -216,7 +198,7 @@ inline std::uint32_t first_pair(const WideRay& r, const WideNode& node) {
   Vec4 parent = r.tmin;
   for (int a = 0; a < 3; ++a) {
     const Vec4 e = slab_entry(r, node, a);
-    parent = vmax(parent, vmin(__builtin_shufflevector(e, e, 1, 0, 3, 2), e));
+    parent = vmax(parent, vmin(shuffle_yxwz(e), e));
   }
   return parent[0] <= parent[2] ? 0u : 2u;
 }
