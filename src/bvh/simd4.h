@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #if !defined(SP_SIMD_SCALAR) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #define SP_SIMD_SSE2 1
@@ -38,6 +39,24 @@
 
 namespace sp {
 
+#if defined(SP_SIMD_SSE2) || defined(SP_SIMD_NEON)
+namespace detail_simd4 {
+// Lane i of a vector object, read or written in its own bytes: memcpy
+// rather than a pointer cast (no aliasing question), and in place rather
+// than through a stored copy (a 4-byte store then a 16-byte load of it
+// misses store-to-load forwarding, which made the wide BVH build slower).
+template <class T>
+inline T lane(const void* v, unsigned i) {
+  T x;
+  std::memcpy(&x, static_cast<const char*>(v) + sizeof(T) * i, sizeof(T));
+  return x;
+}
+inline void set_lane(void* v, int i, float x) {
+  std::memcpy(static_cast<char*>(v) + sizeof(float) * static_cast<unsigned>(i), &x, sizeof(float));
+}
+}  // namespace detail_simd4
+#endif
+
 #if defined(SP_SIMD_SSE2)
 
 struct Int4 {
@@ -45,11 +64,7 @@ struct Int4 {
   Int4() = default;
   explicit Int4(__m128i v) : m(v) {}
   std::int32_t operator[](int i) const { return (*this)[static_cast<unsigned>(i)]; }
-  std::int32_t operator[](unsigned i) const {
-    alignas(16) std::int32_t a[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(a), m);
-    return a[i];
-  }
+  std::int32_t operator[](unsigned i) const { return detail_simd4::lane<std::int32_t>(this, i); }
 };
 
 struct Vec4 {
@@ -58,17 +73,8 @@ struct Vec4 {
   Vec4(float x, float y, float z, float w) : m(_mm_setr_ps(x, y, z, w)) {}
   explicit Vec4(__m128 v) : m(v) {}
   float operator[](int i) const { return (*this)[static_cast<unsigned>(i)]; }
-  float operator[](unsigned i) const {
-    alignas(16) float a[4];
-    _mm_store_ps(a, m);
-    return a[i];
-  }
-  void set(int i, float x) {
-    alignas(16) float a[4];
-    _mm_store_ps(a, m);
-    a[i] = x;
-    m = _mm_load_ps(a);
-  }
+  float operator[](unsigned i) const { return detail_simd4::lane<float>(this, i); }
+  void set(int i, float x) { detail_simd4::set_lane(this, i, x); }
 };
 
 inline Vec4 splat(float x) { return Vec4(_mm_set1_ps(x)); }
@@ -108,11 +114,7 @@ struct Int4 {
   explicit Int4(int32x4_t v) : m(v) {}
   explicit Int4(uint32x4_t v) : m(vreinterpretq_s32_u32(v)) {}
   std::int32_t operator[](int i) const { return (*this)[static_cast<unsigned>(i)]; }
-  std::int32_t operator[](unsigned i) const {
-    std::int32_t a[4];
-    vst1q_s32(a, m);
-    return a[i];
-  }
+  std::int32_t operator[](unsigned i) const { return detail_simd4::lane<std::int32_t>(this, i); }
 };
 
 struct alignas(16) Vec4 {
@@ -124,17 +126,8 @@ struct alignas(16) Vec4 {
   }
   explicit Vec4(float32x4_t v) : m(v) {}
   float operator[](int i) const { return (*this)[static_cast<unsigned>(i)]; }
-  float operator[](unsigned i) const {
-    float a[4];
-    vst1q_f32(a, m);
-    return a[i];
-  }
-  void set(int i, float x) {
-    float a[4];
-    vst1q_f32(a, m);
-    a[i] = x;
-    m = vld1q_f32(a);
-  }
+  float operator[](unsigned i) const { return detail_simd4::lane<float>(this, i); }
+  void set(int i, float x) { detail_simd4::set_lane(this, i, x); }
 };
 
 inline Vec4 splat(float x) { return Vec4(vdupq_n_f32(x)); }
