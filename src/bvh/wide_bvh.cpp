@@ -265,7 +265,8 @@ inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, s
     const Vec4 t_scaled = u * az + v * bz + w * cz;
     const Vec4 t = t_scaled / det;  // lanes with det == 0 are masked below
     // t <= limit <= tmax stands for t <= tmax; the tie needs offer().
-    const Int4 candidate = ~outside & (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.limit()));
+    const Int4 candidate =
+        and_not(outside, (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.limit())));
     for (unsigned m = lane_mask(candidate); m != 0u; m &= m - 1u) {
       const auto lane = static_cast<unsigned>(std::countr_zero(m));
       if (t[lane] <= best.limit()) best.offer(t[lane], p->triangle[lane]);
