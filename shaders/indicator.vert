@@ -15,20 +15,30 @@ layout(std430, push_constant) uniform Push { IndicatorPush push; };
 layout(location = 0) out vec2 out_local;        // the spot's frame, in units of its radius: the shape is |p| <= 1
 layout(location = 1) flat out vec4 out_color;   // rgb, opacity
 layout(location = 2) flat out vec4 out_shape;   // shape id, tail length (radii), 1 for direct sound, radius (m)
-layout(location = 3) out vec3 out_world;        // the fragment's point on the quad, world space
-layout(location = 4) flat out vec3 out_anchor;  // the spot's centre on the quad, world space
-layout(location = 5) flat out vec3 out_normal;  // the surface's unit normal
+// For clipping (indicator_fragment.glsl): the fragment's point on the quad
+// and the spot's centre on it, in clip space (clip coordinates are linear in
+// world space, so any point between them is a mix), and the eye's height
+// above the surface's plane (negative: the eye is on the normal's side).
+layout(location = 3) out vec4 out_clip;
+layout(location = 4) flat out vec4 out_anchor_clip;
+layout(location = 5) flat out float out_plane_depth;
 
 // The quad's corners in the spot's frame, before its extents are applied:
 // two counter-clockwise triangles covering [-1, 1]^2.
 const vec2 kCorners[SP_INDICATOR_QUAD_VERTICES] =
     vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
 
-// Room around the shape for the anti-aliased edge and the halo: 4.5 pixels
-// on screen (two 1.5 px rings, half a pixel of edge, the tail's round end),
-// or a share of the radius when the viewport's size is unknown. On a
-// software rasteriser the pass's cost is its area.
-const float kMarginPixels = 4.5;
+// Room around the shape for the anti-aliased edge and the halo: two 1.5 px
+// rings and half a pixel of edge (3.5 px seen square-on; the fragment stage
+// covers nothing further out) and half a pixel for the perspective's change
+// across the quad; or a share of the radius when the viewport's size is
+// unknown, and never more. The pass costs its area, so the quad holds no
+// more than the shape, its tail and this margin. Seen at a grazing angle, a
+// pixel spans more of the surface and the halo, as wide in the spot's frame
+// in every direction, reaches further: there it is cut at the quad's edge
+// (growing the quad with 1 / cosine cost 18% more time on the H100 in
+// bench_draw; bench/RESULTS.md).
+const float kMarginPixels = 4.0;
 const float kMarginRadii = 0.45;
 // Tail length, in radii, when the sound grazes the surface; head-on it has
 // no direction along the surface and no tail.
@@ -45,9 +55,9 @@ void collapse() {
   out_local = vec2(0.0);
   out_color = vec4(0.0);
   out_shape = vec4(0.0);
-  out_world = vec3(0.0);
-  out_anchor = vec3(0.0);
-  out_normal = vec3(0.0);
+  out_clip = vec4(0.0);
+  out_anchor_clip = vec4(0.0);
+  out_plane_depth = 0.0;
 }
 
 void main() {
@@ -96,15 +106,19 @@ void main() {
   }
 
   vec2 corner = kCorners[gl_VertexIndex];
-  // x from the tail's end to past the head, y across: both with the margin.
-  vec2 local = vec2(corner.x < 0.0 ? -(1.0 + tail) - margin : 1.0 + margin, corner.y * (1.0 + margin));
+  // x from the tail's end (or the shape's back) to past the head, y across
+  // (the tail is narrower than any shape): all with the margin.
+  uint shape = source.shape_flags & 0xFFu;
+  float extent = sp_shape_extent(shape);
+  float back = tail > 0.0 ? max(extent, SP_TAIL_START + tail + SP_TAIL_TIP_WIDTH) : extent;
+  vec2 local = vec2(corner.x < 0.0 ? -back - margin : extent + margin, corner.y * (extent + margin));
   vec3 anchor = ind.position + n * SP_INDICATOR_LIFT;
   vec3 p = anchor + (tangent * local.x + bitangent * local.y) * radius;
   out_local = local;
   out_color = vec4(ind.color, opacity);
-  out_shape = vec4(float(source.shape_flags & 0xFFu), tail, direct ? 1.0 : 0.0, radius);
-  out_world = p;
-  out_anchor = anchor;
-  out_normal = n;
+  out_shape = vec4(float(shape), tail, direct ? 1.0 : 0.0, radius);
   gl_Position = push.view_proj * vec4(p, 1.0);
+  out_clip = gl_Position;
+  out_anchor_clip = push.view_proj * vec4(anchor, 1.0);
+  out_plane_depth = dot(anchor - push.eye, n);
 }

@@ -274,6 +274,31 @@ TEST(Shapes, FitTheDiscWithTheSameWeight) {
   }
 }
 
+// The vertex shader sizes each spot's quad to sp_shape_extent: nothing of
+// the shape may lie beyond it (it would be cut off), and it must be tight
+// (a loose extent only costs fill). An unknown id is drawn as the disc, and
+// must be sized as one.
+TEST(Shapes, ExtentHoldsTheShapeTightly) {
+  using sp::shader::sp_shape_extent;
+  constexpr int kSteps = 800;
+  for (Shape shape = 0; shape <= SP_SHAPE_COUNT; ++shape) {
+    const float extent = sp_shape_extent(shape);
+    ASSERT_GT(extent, 0.5f);
+    ASSERT_LE(extent, 0.98f);
+    float farthest = 0.0f;
+    for (int j = 0; j < kSteps; ++j) {
+      for (int i = 0; i < kSteps; ++i) {
+        vec2 p = (vec2(static_cast<float>(i), static_cast<float>(j)) + 0.5f) * (2.0f / kSteps) - vec2(1.0f);
+        if (sp_shape_distance(shape, p) <= 0.0f) farthest = std::max(farthest, glm::length(p));
+      }
+    }
+    const char* name = shape < SP_SHAPE_COUNT ? kShapeNames[shape] : "unknown id";
+    EXPECT_LE(farthest, extent + 1e-4f) << name << " reaches beyond its extent";
+    EXPECT_GE(farthest, extent - 2.0f * 2.0f / kSteps) << name << ": extent " << extent << ", shape " << farthest;
+  }
+  EXPECT_EQ(sp_shape_extent(SP_SHAPE_COUNT + 7), sp_shape_extent(SP_SHAPE_DISC));
+}
+
 // Width of the run of inside points through `centre` along `direction`.
 float stroke_width(Shape shape, vec2 centre, vec2 direction) {
   constexpr float kStep = 1e-4f;

@@ -14,8 +14,9 @@
 // Frame: p is in the spot's own frame, where the unit disc is the spot's
 // extent; +x is the direction the sound was travelling, +y its left. The
 // triangle points along +x. Distances are in the units of p, negative inside.
-// Every shape stays inside the disc of radius 0.98, so an anti-aliased edge
-// fits the quad; an outline halo needs the quad grown or p scaled up.
+// Every shape stays inside the disc of radius 0.98; sp_shape_extent gives
+// each one's own radius, to which the vertex shader sizes the spot's quad
+// (plus room for the anti-aliased edge and the halo).
 //
 // Design rules (tests/test_shapes.cpp checks each):
 //  - the same visual weight: every shape covers SP_SHAPE_AREA_SHARE of the
@@ -58,6 +59,13 @@
 #define SP_SHAPE_MIN_PIXELS 16.0f
 
 #define SP_SHAPE_PI 3.14159265f
+
+// The comet's tail (indicator_fragment.glsl): it starts SP_TAIL_START radii
+// behind the centre, SP_TAIL_ROOT_WIDTH wide (half-width, in radii), and
+// narrows to SP_TAIL_TIP_WIDTH at its end.
+#define SP_TAIL_START 0.85f
+#define SP_TAIL_ROOT_WIDTH 0.22f
+#define SP_TAIL_TIP_WIDTH 0.04f
 
 SP_BEGIN_NAMESPACE
 
@@ -124,19 +132,36 @@ SP_INLINE float sp_cross_distance(vec2 p, vec2 arm, float half_length, float hal
   return -min(-beyond.x, min(to_lower, to_upper));
 }
 
+// The sizes the shapes below share with sp_shape_extent. Areas in units of
+// p squared.
+#define SP_SHAPE_AREA (SP_SHAPE_AREA_SHARE * SP_SHAPE_PI)
+// Ring: area 2*pi*mid*stroke.
+#define SP_RING_MID_RADIUS (SP_SHAPE_AREA_SHARE / (2.0f * SP_SHAPE_STROKE))
+// Plus: stout arms, area 8*L*w - 4*w^2.
+#define SP_PLUS_HALF_WIDTH 0.24f
+#define SP_PLUS_HALF_LENGTH \
+  ((SP_SHAPE_AREA + 4.0f * SP_PLUS_HALF_WIDTH * SP_PLUS_HALF_WIDTH) / (8.0f * SP_PLUS_HALF_WIDTH))
+#define SP_SQUARE_HALF_SIDE (0.5f * sqrt(SP_SHAPE_AREA))
+// Hexagon: area 3*sqrt(3)/2 * R^2, at the top of the band (the disc is at its
+// bottom): the closest pair of all, told apart only by the corners.
+#define SP_HEXAGON_RADIUS sqrt(2.0f * 1.1f * SP_SHAPE_AREA / (3.0f * 1.7320508f))
+#define SP_DISC_RADIUS sqrt(0.9f * SP_SHAPE_AREA_SHARE)
+#define SP_DIAMOND_HALF_LONG 0.97f
+#define SP_STAR_OUTER 0.97f
+// The shapes that reach out to the rim: the triangle's corners, the cross's
+// arms and the clover's lobes.
+#define SP_RIM_RADIUS 0.98f
+
 SP_INLINE float sp_shape_distance(uint shape, vec2 p) {
-  const float area = SP_SHAPE_AREA_SHARE * SP_SHAPE_PI;  // in units of p squared
+  const float area = SP_SHAPE_AREA;
   const float sqrt3 = 1.7320508f;
   switch (shape) {
-    case SP_SHAPE_RING: {
-      // Area 2*pi*mid*stroke.
-      float mid_radius = SP_SHAPE_AREA_SHARE / (2.0f * SP_SHAPE_STROKE);
-      return abs(length(p) - mid_radius) - 0.5f * SP_SHAPE_STROKE;
-    }
+    case SP_SHAPE_RING:
+      return abs(length(p) - SP_RING_MID_RADIUS) - 0.5f * SP_SHAPE_STROKE;
     case SP_SHAPE_DIAMOND: {
       // Area 2*a*b; 1.5:1 along the travel direction, so that no rotation
       // makes it the square.
-      float half_long = 0.97f;
+      float half_long = SP_DIAMOND_HALF_LONG;
       float half_short = area / (2.0f * half_long);
       return sp_edge_distance(abs(p), vec2(half_long, 0.0f), vec2(0.0f, half_short));
     }
@@ -146,43 +171,66 @@ SP_INLINE float sp_shape_distance(uint shape, vec2 p) {
       // the disc, as much as strokes this thin can cover, within the band.
       float half_width = 0.5f * SP_SHAPE_STROKE;
       vec2 arm = vec2(0.5f, 0.5f * sqrt3);  // 60 degrees from +x
-      float half_length = sqrt(0.98f * 0.98f - half_width * half_width);
+      float half_length = sqrt(SP_RIM_RADIUS * SP_RIM_RADIUS - half_width * half_width);
       return sp_cross_distance(p, arm, half_length, half_width);
     }
     case SP_SHAPE_PLUS: {
-      // Stout arms (a Swiss cross), area 8*L*w - 4*w^2. The cross function's
-      // arms lie at +-45 degrees; p turned by -45 degrees puts them on the axes.
-      float half_width = 0.24f;
-      float half_length = (area + 4.0f * half_width * half_width) / (8.0f * half_width);
+      // A Swiss cross. The cross function's arms lie at +-45 degrees; p
+      // turned by -45 degrees puts them on the axes.
       const float cos45 = 0.70710678f;
       vec2 turned = cos45 * vec2(p.x + p.y, p.y - p.x);
-      return sp_cross_distance(turned, vec2(cos45, cos45), half_length, half_width);
+      return sp_cross_distance(turned, vec2(cos45, cos45), SP_PLUS_HALF_LENGTH, SP_PLUS_HALF_WIDTH);
     }
     case SP_SHAPE_TRIANGLE:
       // Corners just inside the rim, one on +x: it points where the sound went.
-      return sp_regular_polygon_distance(p, 3.0f, 0.98f);
+      return sp_regular_polygon_distance(p, 3.0f, SP_RIM_RADIUS);
     case SP_SHAPE_SQUARE:
-      return sp_box_distance(p, vec2(0.5f * sqrt(area)));
+      return sp_box_distance(p, vec2(SP_SQUARE_HALF_SIDE));
     case SP_SHAPE_STAR: {
       // Five points near the rim; area 5*R*r*sin(36 degrees) sets the inner radius.
-      float outer = 0.97f;
+      float outer = SP_STAR_OUTER;
       float inner = area / (5.0f * outer * sin(SP_SHAPE_PI / 5.0f));
       return sp_star_distance(p, 5.0f, outer, inner);
     }
     case SP_SHAPE_HEXAGON:
-      // Area 3*sqrt(3)/2 * R^2, at the top of the band (the disc is at its
-      // bottom): the closest pair of all, told apart only by the corners.
-      return sp_regular_polygon_distance(p, 6.0f, sqrt(2.0f * 1.1f * area / (3.0f * sqrt3)));
+      return sp_regular_polygon_distance(p, 6.0f, SP_HEXAGON_RADIUS);
     case SP_SHAPE_CLOVER: {
       // Three separate discs reaching radius 0.98, apart by a third of the
       // radius so the gaps survive at small sizes; one on -x, so that the
       // clover does not point where the triangle does.
       float lobe_radius = sqrt(SP_SHAPE_AREA_SHARE / 3.0f);
       vec2 q = sp_fold_to_wedge(vec2(-p.x, p.y), 3.0f);
-      return length(q - vec2(0.98f - lobe_radius, 0.0f)) - lobe_radius;
+      return length(q - vec2(SP_RIM_RADIUS - lobe_radius, 0.0f)) - lobe_radius;
     }
     default:  // SP_SHAPE_DISC, and any unknown id: at the bottom of the band
-      return length(p) - sqrt(0.9f * SP_SHAPE_AREA_SHARE);
+      return length(p) - SP_DISC_RADIUS;
+  }
+}
+
+// Radius of the smallest disc around the spot's centre that holds the
+// shape. The vertex shader sizes the spot's quad to it: the pass costs its
+// area, on a software rasteriser and on GPUs with few fragment units alike,
+// and the compact shapes need a little over half the unit disc's square.
+SP_INLINE float sp_shape_extent(uint shape) {
+  switch (shape) {
+    case SP_SHAPE_RING:
+      return SP_RING_MID_RADIUS + 0.5f * SP_SHAPE_STROKE;
+    case SP_SHAPE_PLUS:
+      return sqrt(SP_PLUS_HALF_LENGTH * SP_PLUS_HALF_LENGTH + SP_PLUS_HALF_WIDTH * SP_PLUS_HALF_WIDTH);
+    case SP_SHAPE_SQUARE:
+      return 1.4142136f * SP_SQUARE_HALF_SIDE;
+    case SP_SHAPE_HEXAGON:
+      return SP_HEXAGON_RADIUS;
+    case SP_SHAPE_DIAMOND:
+      return SP_DIAMOND_HALF_LONG;
+    case SP_SHAPE_STAR:
+      return SP_STAR_OUTER;
+    case SP_SHAPE_CROSS:
+    case SP_SHAPE_TRIANGLE:
+    case SP_SHAPE_CLOVER:
+      return SP_RIM_RADIUS;
+    default:
+      return SP_DISC_RADIUS;
   }
 }
 
