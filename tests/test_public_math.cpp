@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -113,6 +114,29 @@ TEST(PublicMath, WorldCopiesOwnTheirGeometry) {
   copy.geometry->bvh.triangles.clear();
   EXPECT_EQ(world.triangle_count(), 1u) << "a copy's refit or rebuild must not reach the original";
   EXPECT_EQ(copy.triangle_count(), 0u);
+}
+
+// A moved-from World is left empty, not broken: reading, copying and
+// assigning it must not reach a null geometry.
+TEST(PublicMath, AMovedFromWorldReadsAsEmpty) {
+  Scene scene;
+  scene.vertices = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  scene.triangle_layers = {0};
+  scene.layer_names = {"concrete"};
+  Config config;
+  config.listener_position = Vec3(0.0f, 0.0f, 0.0f);
+  World moved_from = make_world(scene, config).value();
+  const World taken = std::move(moved_from);
+  EXPECT_EQ(taken.triangle_count(), 1u);
+  EXPECT_EQ(std::as_const(moved_from).triangle_count(), 0u);
+  const World copy = moved_from;
+  EXPECT_EQ(copy.triangle_count(), 0u);
+  World assigned = taken;
+  assigned = moved_from;
+  EXPECT_EQ(assigned.triangle_count(), 0u);
+  // Written to, it gets geometry of its own again.
+  moved_from.geometry->bvh.triangles = taken.geometry->bvh.triangles;
+  EXPECT_EQ(moved_from.triangle_count(), 1u);
 }
 
 }  // namespace

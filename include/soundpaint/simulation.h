@@ -63,7 +63,8 @@ struct SoundSceneBackend;  // src/sim/sound_scene_backend.h
 
 // The geometry a backend traces (the BVH, the rest pose of moving parts and
 // what rebuilding needs), opaque outside the library. Copied with its World
-// (deeply: copies never share a refit).
+// (deeply: copies never share a refit). A moved-from handle holds no
+// geometry and reads as an empty one (no triangles), copies included.
 class WorldGeometryHandle {
  public:
   WorldGeometryHandle();
@@ -73,10 +74,10 @@ class WorldGeometryHandle {
   WorldGeometryHandle(WorldGeometryHandle&& other) noexcept;
   WorldGeometryHandle& operator=(WorldGeometryHandle&& other) noexcept;
 
-  detail::WorldGeometry& operator*() { return *geometry_; }
-  const detail::WorldGeometry& operator*() const { return *geometry_; }
-  detail::WorldGeometry* operator->() { return geometry_.get(); }
-  const detail::WorldGeometry* operator->() const { return geometry_.get(); }
+  detail::WorldGeometry& operator*();
+  const detail::WorldGeometry& operator*() const;
+  detail::WorldGeometry* operator->() { return &**this; }
+  const detail::WorldGeometry* operator->() const { return &**this; }
 
  private:
   std::unique_ptr<detail::WorldGeometry> geometry_;

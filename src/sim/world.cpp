@@ -96,10 +96,20 @@ void check_config(const Config& c) {
 WorldGeometryHandle::WorldGeometryHandle() : geometry_(std::make_unique<detail::WorldGeometry>()) {}
 WorldGeometryHandle::~WorldGeometryHandle() = default;
 WorldGeometryHandle::WorldGeometryHandle(const WorldGeometryHandle& other)
-    : geometry_(std::make_unique<detail::WorldGeometry>(*other.geometry_)) {}
+    : geometry_(std::make_unique<detail::WorldGeometry>(*other)) {}
 WorldGeometryHandle& WorldGeometryHandle::operator=(const WorldGeometryHandle& other) {
-  if (this != &other) geometry_ = std::make_unique<detail::WorldGeometry>(*other.geometry_);
+  if (this != &other) geometry_ = std::make_unique<detail::WorldGeometry>(*other);
   return *this;
+}
+// A moved-from handle's geometry is null: reading it gives the empty
+// geometry, writing it first gives it one of its own.
+detail::WorldGeometry& WorldGeometryHandle::operator*() {
+  if (!geometry_) geometry_ = std::make_unique<detail::WorldGeometry>();
+  return *geometry_;
+}
+const detail::WorldGeometry& WorldGeometryHandle::operator*() const {
+  static const detail::WorldGeometry empty{};
+  return geometry_ ? *geometry_ : empty;
 }
 WorldGeometryHandle::WorldGeometryHandle(WorldGeometryHandle&& other) noexcept = default;
 WorldGeometryHandle& WorldGeometryHandle::operator=(WorldGeometryHandle&& other) noexcept = default;
