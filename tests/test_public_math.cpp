@@ -101,14 +101,19 @@ TEST(PublicMath, IndicatorsCrossTheApiBitForBit) {
   EXPECT_EQ(std::memcmp(&round_trip, &inner, sizeof inner), 0);
 }
 
-TEST(PublicMath, WorldCopiesOwnTheirGeometry) {
+// A World of one triangle.
+World one_triangle_world() {
   Scene scene;
   scene.vertices = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
   scene.triangle_layers = {0};
   scene.layer_names = {"concrete"};
   Config config;
   config.listener_position = Vec3(0.0f, 0.0f, 0.0f);
-  const World world = make_world(scene, config).value();
+  return make_world(scene, config).value();
+}
+
+TEST(PublicMath, WorldCopiesOwnTheirGeometry) {
+  const World world = one_triangle_world();
   World copy = world;
   EXPECT_EQ(copy.triangle_count(), 1u);
   copy.geometry->bvh.triangles.clear();
@@ -119,13 +124,7 @@ TEST(PublicMath, WorldCopiesOwnTheirGeometry) {
 // A moved-from World is left empty, not broken: reading, copying and
 // assigning it must not reach a null geometry.
 TEST(PublicMath, AMovedFromWorldReadsAsEmpty) {
-  Scene scene;
-  scene.vertices = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
-  scene.triangle_layers = {0};
-  scene.layer_names = {"concrete"};
-  Config config;
-  config.listener_position = Vec3(0.0f, 0.0f, 0.0f);
-  World moved_from = make_world(scene, config).value();
+  World moved_from = one_triangle_world();
   const World taken = std::move(moved_from);
   EXPECT_EQ(taken.triangle_count(), 1u);
   EXPECT_EQ(std::as_const(moved_from).triangle_count(), 0u);
