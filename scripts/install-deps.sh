@@ -3,7 +3,9 @@
 # missing. Needs root (or sudo). `install-deps.sh fuzz` adds the clang
 # tools CI uses: clang, the libFuzzer and sanitizer runtimes scripts/fuzz.sh
 # needs (libclang-rt-14-dev, only recommended by clang, so named here) and
-# clang-format for scripts/format.sh.
+# clang-format for scripts/format.sh. `install-deps.sh embree` adds
+# libembree-dev, for -DSOUNDPAINT_EMBREE=ON (cpu_traversal "embree") and
+# bench_rays' Embree comparison. Extras combine: `install-deps.sh fuzz embree`.
 set -euo pipefail
 
 packages=(
@@ -13,9 +15,16 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglfw3-dev libimgui-dev xvfb xauth
 )
-if [ "${1:-}" = fuzz ]; then
-  packages+=(clang libclang-rt-14-dev clang-format)
-fi
+for extra in "$@"; do
+  case "$extra" in
+    fuzz) packages+=(clang libclang-rt-14-dev clang-format) ;;
+    embree) packages+=(libembree-dev) ;;
+    *)
+      echo "install-deps.sh: unknown extra '$extra' (fuzz, embree)" >&2
+      exit 2
+      ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

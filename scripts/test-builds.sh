@@ -5,7 +5,8 @@
 #   bash scripts/test-builds.sh [clang] [assert]     (default: both)
 #
 #   clang   clang++ with -Werror (build-clang/): clang's warnings are not
-#           GCC's (e.g. -Wconversion includes -Wsign-conversion there).
+#           GCC's (e.g. -Wconversion includes -Wsign-conversion there);
+#           with -DSOUNDPAINT_EMBREE=ON, the optional Embree traversal.
 #   assert  GCC, -O2 with assertions on (build-assert/): no -DNDEBUG, so
 #           every assert() runs, and _GLIBCXX_ASSERTIONS, so the standard
 #           library checks indices, front() and back() of empty containers,
@@ -40,9 +41,12 @@ run_stage() {
 for stage in "${stages[@]}"; do
   case "$stage" in
     clang)
-      bash scripts/install-deps.sh fuzz  # clang (and the runtimes fuzz.sh needs anyway)
-      run_stage "clang -Werror" "${prefix}clang" -DCMAKE_BUILD_TYPE=Release \
-        -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++
+      # clang (and the runtimes fuzz.sh needs anyway), and Embree: this stage
+      # also builds the CPU backend's optional Embree traversal, so that its
+      # tests run (test_cpu_traversal, and the physics tests' CpuEmbree cases).
+      bash scripts/install-deps.sh fuzz embree
+      run_stage "clang -Werror, with Embree" "${prefix}clang" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSOUNDPAINT_EMBREE=ON
       ;;
     assert)
       # RelWithDebInfo's flags without -DNDEBUG (and without -g, which only

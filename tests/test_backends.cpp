@@ -8,6 +8,7 @@
 
 #include "core/glm_interop.h"
 #include "sp_types.h"
+#include "support/backend_cases.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
@@ -18,10 +19,10 @@ namespace {
 using Outcome = test::Recorded;
 using test::closed_room;
 
-class BackendPhysics : public test::GpuTest, public ::testing::WithParamInterface<Backend> {
+class BackendPhysics : public test::GpuTest, public ::testing::WithParamInterface<test::BackendCase> {
  protected:
   Outcome run(const Scene& scene, const Config& config, int steps) {
-    auto sim = make_simulator(make_world(scene, config).value(), GetParam());
+    auto sim = make_simulator(make_world(scene, test::with_traversal(config, GetParam())).value(), GetParam().backend);
     return test::run_steps(*sim, static_cast<std::uint64_t>(steps));
   }
 };
@@ -194,10 +195,7 @@ TEST_F(GpuLimits, StepsAfterTheBudgetSplitNeverExceedTheBuffers) {
   for (const Indicator& ind : sim->last_step_indicators().value()) EXPECT_EQ(ind.source_id, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, BackendPhysics, ::testing::Values(Backend::Cpu, Backend::Gpu),
-                         [](const auto& test_info) {
-                           return std::string(test_info.param == Backend::Cpu ? "cpu" : "gpu");
-                         });
+INSTANTIATE_TEST_SUITE_P(Backends, BackendPhysics, ::testing::ValuesIn(test::backend_cases()), test::backend_case_name);
 
 }  // namespace
 }  // namespace sp

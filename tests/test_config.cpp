@@ -115,6 +115,22 @@ TEST(ConfigParse, EveryBudgetWeighting) {
   EXPECT_EQ(parse_ok(R"({"budget_weighting": "proximity"})").budget_weighting, BudgetWeighting::Proximity);
 }
 
+// The CPU backend's traversal: soundpaint's own by default; Embree only
+// where the library was built with it, else an error saying how to get it.
+TEST(ConfigParse, CpuTraversal) {
+  EXPECT_EQ(parse_ok("{}").cpu_traversal, sp::CpuTraversal::Soundpaint);
+  EXPECT_EQ(parse_ok(R"({"cpu_traversal": "soundpaint"})").cpu_traversal, sp::CpuTraversal::Soundpaint);
+  expect_error(R"({"cpu_traversal": "optix"})", {"cpu_traversal", R"(must be "soundpaint" or "embree")"});
+  expect_error(R"({"cpu_traversal": 1})", {"cpu_traversal", R"(must be "soundpaint" or "embree")"});
+#ifdef SOUNDPAINT_HAVE_EMBREE
+  EXPECT_TRUE(sp::embree_available());
+  EXPECT_EQ(parse_ok(R"({"cpu_traversal": "embree"})").cpu_traversal, sp::CpuTraversal::Embree);
+#else
+  EXPECT_FALSE(sp::embree_available());
+  expect_error(R"({"cpu_traversal": "embree"})", {"cpu_traversal", "-DSOUNDPAINT_EMBREE=ON"});
+#endif
+}
+
 TEST(ConfigParse, EverySourceField) {
   const Config config = parse_ok(R"({"sources": [
     {"position": [1, 2, 3], "color": [1, 0.5, 0], "category": "footsteps", "max_distance": 12,

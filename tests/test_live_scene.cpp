@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/glm_interop.h"
+#include "support/backend_cases.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
@@ -15,10 +16,10 @@
 namespace sp {
 namespace {
 
-class LiveScene : public test::GpuTest, public ::testing::WithParamInterface<Backend> {
+class LiveScene : public test::GpuTest, public ::testing::WithParamInterface<test::BackendCase> {
  protected:
   std::unique_ptr<Simulator> simulator(const Scene& scene, const Config& config) {
-    return make_simulator(make_world(scene, config).value(), GetParam());
+    return make_simulator(make_world(scene, test::with_traversal(config, GetParam())).value(), GetParam().backend);
   }
 };
 
@@ -170,11 +171,7 @@ TEST_P(LiveScene, EmittedSoundPlaysForItsDurationThenEnds) {
   EXPECT_EQ(sim->stats().value().rays_emitted, 2u * config.ray_budget);
 }
 
-std::string backend_name(const ::testing::TestParamInfo<Backend>& param) {
-  return param.param == Backend::Cpu ? "Cpu" : "Gpu";
-}
-
-INSTANTIATE_TEST_SUITE_P(Backends, LiveScene, ::testing::Values(Backend::Cpu, Backend::Gpu), backend_name);
+INSTANTIATE_TEST_SUITE_P(Backends, LiveScene, ::testing::ValuesIn(test::backend_cases()), test::backend_case_name);
 
 }  // namespace
 }  // namespace sp

@@ -47,6 +47,16 @@ struct SourceDesc {
 
 enum class BudgetWeighting { Even, Proximity };
 
+// What the CPU backend casts its rays with (key "cpu_traversal"):
+// soundpaint's own traversal, the GPU backend's reference bit for bit (the
+// default), or Embree's, faster and equal up to float rounding, where the
+// library was built with it (-DSOUNDPAINT_EMBREE=ON; embree_available()).
+// Only the cast to the nearest surface changes; the GPU backend ignores it.
+enum class CpuTraversal { Soundpaint, Embree };
+
+// Whether this build of the library can cast with Embree.
+bool embree_available();
+
 // Every key of the JSON configuration, with its default.
 // Diffraction at the scene's exposed edges: the config's `diffraction`
 // (docs/model.md#diffraction). Off by default: without it the model is the
@@ -90,6 +100,7 @@ struct Config {
   std::vector<SourceDesc> sources;                // added after the scene's sources
   DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
   DiffractionSettings diffraction;                // sound bending round edges (docs/model.md#diffraction)
+  CpuTraversal cpu_traversal = CpuTraversal::Soundpaint;
 };
 
 // Largest accepted values (inclusive); larger values are configuration errors.

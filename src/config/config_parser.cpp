@@ -108,6 +108,21 @@ BudgetWeighting read_budget_weighting(const json& value, const JsonPath& at) {
   at.fail(R"(must be "even" or "proximity")", value);
 }
 
+CpuTraversal read_cpu_traversal(const json& value, const JsonPath& at) {
+  if (value.is_string()) {
+    const auto& text = value.get_ref<const std::string&>();
+    if (text == "soundpaint") return CpuTraversal::Soundpaint;
+    if (text == "embree") {
+      if (!embree_available())
+        at.fail(
+            R"("embree" needs soundpaint built with -DSOUNDPAINT_EMBREE=ON (Debian: libembree-dev); this build has only "soundpaint")",
+            value);
+      return CpuTraversal::Embree;
+    }
+  }
+  at.fail(R"(must be "soundpaint" or "embree")", value);
+}
+
 constexpr KeyReader kKeyReaders[] = {
     {"scan_radius",
      [](const json& v, const JsonPath& at, Config& c) { c.scan_radius = read_float(v, at, kNonNegative); }},
@@ -117,6 +132,8 @@ constexpr KeyReader kKeyReaders[] = {
                           Config& c) { c.max_indicators = read_uint32(v, at, 1, kMaxIndicatorsLimit); }},
     {"budget_weighting",
      [](const json& v, const JsonPath& at, Config& c) { c.budget_weighting = read_budget_weighting(v, at); }},
+    {"cpu_traversal",
+     [](const json& v, const JsonPath& at, Config& c) { c.cpu_traversal = read_cpu_traversal(v, at); }},
     {"max_bounces",
      [](const json& v, const JsonPath& at, Config& c) { c.max_bounces = read_uint32(v, at, 0, kMaxBouncesLimit); }},
     {"bounce_energy_loss",

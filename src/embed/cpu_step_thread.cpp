@@ -18,10 +18,11 @@ CpuStepThread::~CpuStepThread() {
 }
 
 void CpuStepThread::start(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, StepPlan plan,
-                          const shader::SimParams& params) {
+                          const shader::SimParams& params, const EmbreeTraversal* embree) {
   {
     const std::lock_guard lock(mutex_);
     bvh_ = &bvh;
+    embree_ = embree;
     layers_ = layers;
     plan_ = std::move(plan);
     params_ = params;
@@ -70,7 +71,7 @@ void CpuStepThread::loop() {
     std::exception_ptr error;
     const auto started = std::chrono::steady_clock::now();
     try {
-      runner_.run(*bvh_, layers_, plan_, params_, output_);
+      runner_.run(*bvh_, layers_, plan_, params_, output_, embree_);
     } catch (...) {
       error = std::current_exception();
     }

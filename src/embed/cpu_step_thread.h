@@ -23,8 +23,9 @@ class CpuStepThread {
 
   // Starts a step. Precondition: idle(). `bvh` and `layers` must stay
   // unchanged until the result is taken.
+  // With `embree` (over `bvh`, unchanged likewise) rays cast through it.
   void start(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, StepPlan plan,
-             const shader::SimParams& params);
+             const shader::SimParams& params, const EmbreeTraversal* embree = nullptr);
 
   bool idle() const;  // no step running, no result waiting
   // The finished step's output, or null while it runs (never blocks).
@@ -45,6 +46,7 @@ class CpuStepThread {
   State state_ = State::Idle;
   bool quit_ = false;
   const Bvh* bvh_ = nullptr;
+  const EmbreeTraversal* embree_ = nullptr;
   std::span<const shader::LayerAcoustics> layers_;
   StepPlan plan_;
   shader::SimParams params_{};

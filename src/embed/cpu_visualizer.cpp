@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "embed/cpu_step_thread.h"
+#include "sim/embree_traversal.h"
 #include "embed/visualizers.h"
 #include "sim/indicator_ring.h"
 #include "sim/sound_scene_backend.h"
@@ -31,6 +32,8 @@ class CpuVisualizer final : public VisualizerBase {
                    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,  // the display prepass reads the instance count
                    vk::MemoryUsage::DeviceLocal, "cpu indicator draw args"),
+        cpu_threads_(settings.cpu.threads),
+        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, cpu_threads_)),
         worker_(settings.cpu.threads, scene_.world().layer_names.size()) {}
 
   ~CpuVisualizer() override { worker_.wait(); }
@@ -119,13 +122,16 @@ class CpuVisualizer final : public VisualizerBase {
 
  private:
   void start_next_step() {
-    // The worker is idle, so nothing reads the BVH while it is refitted.
-    (void)detail::SoundSceneBackend::update_geometry(scene_);
+    // The worker is idle, so nothing reads the BVH (or the Embree scene over
+    // it) while it is refitted.
+    const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene_);
+    const Bvh& bvh = scene_.world().geometry->bvh;
+    if (embree_ && triangles_moved(changes)) embree_ = make_cpu_traversal(scene_.world().config, bvh, cpu_threads_);
     StepPlan plan;
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
-    worker_.start(scene_.world().geometry->bvh, layer_table_, std::move(plan),
-                  make_sim_params(scene_.world().config, next_step_));
+    worker_.start(bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_),
+                  embree_.get());
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
@@ -161,14 +167,16 @@ class CpuVisualizer final : public VisualizerBase {
   std::vector<shader::LayerAcoustics> layer_table_;
   vk::Buffer ring_;
   vk::Buffer draw_args_;
-  CpuStepThread worker_;            // after what its running step reads
-  std::uint64_t pushed_ = 0;        // indicators ever appended to the ring
-  SimulationTotals totals_;         // casts, rays and indicators of the steps handed over
-  std::uint32_t running_rays_ = 0;  // rays of the step the worker runs
-  std::uint64_t steps_run_ = 0;     // steps handed over
-  std::uint64_t next_step_ = 0;     // step the worker runs next
-  std::uint64_t running_step_ = 0;  // step the worker runs or ran last
-  std::uint32_t due_ = 0;           // steps due but not started
+  unsigned cpu_threads_;
+  std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
+  CpuStepThread worker_;                     // after what its running step reads
+  std::uint64_t pushed_ = 0;                 // indicators ever appended to the ring
+  SimulationTotals totals_;                  // casts, rays and indicators of the steps handed over
+  std::uint32_t running_rays_ = 0;           // rays of the step the worker runs
+  std::uint64_t steps_run_ = 0;              // steps handed over
+  std::uint64_t next_step_ = 0;              // step the worker runs next
+  std::uint64_t running_step_ = 0;           // step the worker runs or ran last
+  std::uint32_t due_ = 0;                    // steps due but not started
   bool recorded_ = false;
 };
 

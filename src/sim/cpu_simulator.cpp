@@ -7,6 +7,7 @@
 
 #include "bvh/bvh.h"
 #include "sim/cpu_step_runner.h"
+#include "sim/embree_traversal.h"
 #include "sim/indicator_convert.h"
 #include "sim/indicator_ring.h"
 #include "sim/memory_estimate.h"
@@ -23,7 +24,9 @@ class CpuSimulator final : public Simulator {
       : scene_(std::move(world)),
         runner_(settings.threads, scene_.world().layer_names.size()),
         ring_(scene_.world().config.max_indicators),
-        layer_table_(make_layer_table(scene_.world())) {
+        layer_table_(make_layer_table(scene_.world())),
+        threads_(settings.threads),
+        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, threads_)) {
     totals_.layers.resize(scene_.world().layer_names.size());
   }
 
@@ -70,10 +73,11 @@ class CpuSimulator final : public Simulator {
   Result<bool> run_step() {
     return capture_errors([&] {
       const std::uint64_t step = steps_run_;
-      (void)detail::SoundSceneBackend::update_geometry(scene_);
+      const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene_);
+      const Bvh& bvh = scene_.world().geometry->bvh;
+      if (embree_ && triangles_moved(changes)) embree_ = make_cpu_traversal(scene_.world().config, bvh, threads_);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
-      runner_.run(scene_.world().geometry->bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step),
-                  last_);
+      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_, embree_.get());
       ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
@@ -93,6 +97,8 @@ class CpuSimulator final : public Simulator {
   std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
   float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
   std::vector<shader::LayerAcoustics> layer_table_;
+  unsigned threads_;
+  std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   StepPlan plan_;
   CpuStepOutput last_;
   SimulationStats totals_;

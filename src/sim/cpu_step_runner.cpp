@@ -19,8 +19,8 @@ CpuStepRunner::CpuStepRunner(unsigned threads, std::size_t layer_count)
 }
 
 void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, const StepPlan& plan,
-                        const shader::SimParams& params, CpuStepOutput& out) {
-  TraceContext context{&bvh, layers, plan.sources, params};
+                        const shader::SimParams& params, CpuStepOutput& out, const EmbreeTraversal* embree) {
+  TraceContext context{&bvh, layers, plan.sources, params, embree};
   const std::size_t chunks = (plan.total_rays + kChunkRays - 1) / kChunkRays;
   if (chunk_indicators_.size() < chunks) chunk_indicators_.resize(chunks);
   for (std::size_t c = 0; c < chunks; ++c) chunk_indicators_[c].clear();

@@ -30,9 +30,10 @@ class CpuStepRunner {
   // Casts every ray of `plan` through `bvh`. Results are independent of the
   // thread count: every random number is keyed by (seed, step, ray,
   // interaction) and indicators are merged in canonical order. `bvh`,
-  // `layers` and `plan` must not change during the call.
+  // `layers` and `plan` must not change during the call. With `embree`
+  // (built over `bvh`), rays cast to the nearest surface through it.
   void run(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, const StepPlan& plan,
-           const shader::SimParams& params, CpuStepOutput& out);
+           const shader::SimParams& params, CpuStepOutput& out, const EmbreeTraversal* embree = nullptr);
 
  private:
   void merge_in_canonical_order(std::size_t chunks, std::vector<shader::Indicator>& out) const;

@@ -1,6 +1,7 @@
 #include "sim/cpu_tracer.h"
 
 #include "bvh/bvh.h"
+#include "sim/embree_traversal.h"
 #include "sp_ray_model.h"
 
 namespace sp {
@@ -18,8 +19,11 @@ void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<sh
   while (ray.state != SP_RAY_DEAD) {
     CastResult found{};
     if (ray.state == SP_RAY_ACTIVE) {
-      // The 4-wide CPU traversal; same hits as the GPU's sp_closest_hit.
-      const HitInfo hit = closest_hit(*context.bvh, ray.origin, ray.dir, 0.0f, sp_active_reach(ray, p));
+      // The 4-wide CPU traversal: same hits as the GPU's sp_closest_hit.
+      // Or Embree's, the same up to float rounding.
+      const float reach = sp_active_reach(ray, p);
+      const HitInfo hit = context.embree ? context.embree->closest_hit(ray.origin, ray.dir, 0.0f, reach)
+                                         : closest_hit(*context.bvh, ray.origin, ray.dir, 0.0f, reach);
       found = CastResult{hit.t, hit.triangle, 0.0f, 0u};
     } else {
       // The 4-wide walk again; the same list as the GPU's sp_nearest_hits.

@@ -30,11 +30,16 @@ struct TraceCounters {
   std::vector<LayerCounters> layers;
 };
 
+class EmbreeTraversal;
+
 struct TraceContext {
   const Bvh* bvh = nullptr;
   std::span<const shader::LayerAcoustics> layers;
   std::span<const shader::StepSource> sources;
   shader::SimParams params{};
+  // Casts to the nearest surface when set (cpu_traversal "embree"); the
+  // matter queries stay on bvh.
+  const EmbreeTraversal* embree = nullptr;
 };
 
 // Traces `ray` (already emitted) to its end, appending its indicators.

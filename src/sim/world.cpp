@@ -88,6 +88,10 @@ void check_config(const Config& c) {
       fail("layers." + name + ".attenuation must be finite and >= 0");
   }
   if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
+  if (c.cpu_traversal == CpuTraversal::Embree && !embree_available())
+    fail("cpu_traversal: Embree needs soundpaint built with -DSOUNDPAINT_EMBREE=ON (Debian: libembree-dev)");
+  if (c.cpu_traversal != CpuTraversal::Soundpaint && c.cpu_traversal != CpuTraversal::Embree)
+    fail("cpu_traversal is not a CpuTraversal value");
   check_display_settings(c.display);
 }
 
