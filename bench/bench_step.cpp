@@ -34,6 +34,7 @@ constexpr const char* kUsage =
     "usage: bench_step [--scene FILE|gen:TRIANGLES] [--backends cpu,gpu] [--budgets A,B,...]\n"
     "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
     "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json] [--diffraction 0|1]\n"
+    "                  [--cpu-traversal soundpaint|embree]\n"
     "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
     "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
     "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
@@ -42,7 +43,9 @@ constexpr const char* kUsage =
     "  --pattern      paper: every source plays every 0.25 s for 0.1 s, phases staggered (default);\n"
     "                 burst: every 0.25 s for one step; scene: as the scene file says\n"
     "  --validate-steps  frames each backend runs for the agreement check (default 10; 0 skips it)\n"
-    "  --diffraction  1: diffraction on, its other keys at their defaults (default 0)\n";
+    "  --diffraction  1: diffraction on, its other keys at their defaults (default 0)\n"
+    "  --cpu-traversal  the config's cpu_traversal for the CPU backend (default soundpaint;\n"
+    "                 embree needs a build with -DSOUNDPAINT_EMBREE=ON)\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
@@ -56,6 +59,7 @@ struct Options {
   std::uint32_t validate_steps = 10;
   std::string json;
   bool diffraction = false;
+  sp::CpuTraversal cpu_traversal = sp::CpuTraversal::Soundpaint;
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -74,7 +78,10 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--json") o.json = value;
     else if (flag == "--diffraction") o.diffraction = cli.to_uint(value, flag) != 0;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
-    else return false;
+    else if (flag == "--cpu-traversal") {
+      if (value != "soundpaint" && value != "embree") cli.fail("--cpu-traversal must be soundpaint or embree");
+      o.cpu_traversal = value == "embree" ? sp::CpuTraversal::Embree : sp::CpuTraversal::Soundpaint;
+    } else return false;
     return true;
   });
   if (o.loop.steps == 0 || o.runs == 0) cli.fail("--steps and --runs must be > 0");
@@ -98,6 +105,7 @@ int run(const CommandLine& cli, const Options& options) {
   sp::Config config;
   config.max_bounces = options.bounces;
   config.diffraction.enabled = options.diffraction;  // its other keys at their defaults
+  config.cpu_traversal = options.cpu_traversal;
   spbench::apply_pattern(scene, options.pattern, config.dt);
   const unsigned threads = spbench::resolve_threads(options.threads);
 
@@ -105,7 +113,8 @@ int run(const CommandLine& cli, const Options& options) {
               options.scene.c_str(), scene.triangle_count(), scene.sources.size(),
               spbench::pattern_name(options.pattern), options.bounces, threads);
   std::printf("host: %s\n", spbench::host_description().c_str());
-  std::printf("diffraction: %s\n", options.diffraction ? "on" : "off");
+  std::printf("diffraction: %s; CPU traversal: %s\n", options.diffraction ? "on" : "off",
+              options.cpu_traversal == sp::CpuTraversal::Embree ? "embree" : "soundpaint");
   config.ray_budget = 1;
   auto probe_world = sp::make_world(scene, config);
   if (!probe_world) {
