@@ -1,4 +1,6 @@
 // What this build of the library can do, as configuration keys ask it.
+#include "config/build_features.h"
+
 #include "soundpaint/config.h"
 
 namespace sp {

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/build_features.h"
 #include "config/diffraction_json.h"
 #include "config/display_json.h"
 #include "config/json_fields.h"
@@ -114,9 +115,7 @@ CpuTraversal read_cpu_traversal(const json& value, const JsonPath& at) {
     if (text == "soundpaint") return CpuTraversal::Soundpaint;
     if (text == "embree") {
       if (!embree_available())
-        at.fail(
-            R"("embree" needs soundpaint built with -DSOUNDPAINT_EMBREE=ON (Debian: libembree-dev); this build has only "soundpaint")",
-            value);
+        at.fail(std::string(R"("embree" )") + kEmbreeBuildHint + R"(; this build has only "soundpaint")", value);
       return CpuTraversal::Embree;
     }
   }

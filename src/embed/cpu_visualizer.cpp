@@ -5,8 +5,8 @@
 #include <algorithm>
 
 #include "embed/cpu_step_thread.h"
-#include "sim/embree_traversal.h"
 #include "embed/visualizers.h"
+#include "sim/embree_traversal.h"
 #include "sim/indicator_ring.h"
 #include "sim/sound_scene_backend.h"
 #include "sim/world_geometry.h"
@@ -32,8 +32,7 @@ class CpuVisualizer final : public VisualizerBase {
                    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,  // the display prepass reads the instance count
                    vk::MemoryUsage::DeviceLocal, "cpu indicator draw args"),
-        cpu_threads_(settings.cpu.threads),
-        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, cpu_threads_)),
+        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, settings.cpu.threads)),
         worker_(settings.cpu.threads, scene_.world().layer_names.size()) {}
 
   ~CpuVisualizer() override { worker_.wait(); }
@@ -126,7 +125,7 @@ class CpuVisualizer final : public VisualizerBase {
     // it) while it is refitted.
     const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene_);
     const Bvh& bvh = scene_.world().geometry->bvh;
-    if (embree_ && triangles_moved(changes)) embree_ = make_cpu_traversal(scene_.world().config, bvh, cpu_threads_);
+    if (embree_) embree_->update(changes);
     StepPlan plan;
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
@@ -167,7 +166,6 @@ class CpuVisualizer final : public VisualizerBase {
   std::vector<shader::LayerAcoustics> layer_table_;
   vk::Buffer ring_;
   vk::Buffer draw_args_;
-  unsigned cpu_threads_;
   std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   CpuStepThread worker_;                     // after what its running step reads
   std::uint64_t pushed_ = 0;                 // indicators ever appended to the ring

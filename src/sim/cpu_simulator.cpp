@@ -25,8 +25,7 @@ class CpuSimulator final : public Simulator {
         runner_(settings.threads, scene_.world().layer_names.size()),
         ring_(scene_.world().config.max_indicators),
         layer_table_(make_layer_table(scene_.world())),
-        threads_(settings.threads),
-        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, threads_)) {
+        embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, settings.threads)) {
     totals_.layers.resize(scene_.world().layer_names.size());
   }
 
@@ -75,7 +74,7 @@ class CpuSimulator final : public Simulator {
       const std::uint64_t step = steps_run_;
       const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene_);
       const Bvh& bvh = scene_.world().geometry->bvh;
-      if (embree_ && triangles_moved(changes)) embree_ = make_cpu_traversal(scene_.world().config, bvh, threads_);
+      if (embree_) embree_->update(changes);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
       runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_, embree_.get());
       ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
@@ -97,7 +96,6 @@ class CpuSimulator final : public Simulator {
   std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
   float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
   std::vector<shader::LayerAcoustics> layer_table_;
-  unsigned threads_;
   std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   StepPlan plan_;
   CpuStepOutput last_;

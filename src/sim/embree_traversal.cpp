@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "config/build_features.h"
 #include "soundpaint/result.h"
 
 #ifdef SOUNDPAINT_HAVE_EMBREE
@@ -30,33 +31,35 @@ struct EmbreeTraversal::Impl {
   }
 };
 
-EmbreeTraversal::EmbreeTraversal(const Bvh& bvh, unsigned threads) : impl_(std::make_unique<Impl>()) {
+std::unique_ptr<EmbreeTraversal::Impl> EmbreeTraversal::build(const Bvh& bvh, unsigned threads) {
+  auto impl = std::make_unique<Impl>();
   const std::string config = "threads=" + std::to_string(threads);
-  impl_->device = rtcNewDevice(config.c_str());
-  if (!impl_->device) throw Exception(ErrorCode::LimitExceeded, "Embree: rtcNewDevice failed");
+  impl->device = rtcNewDevice(config.c_str());
+  if (!impl->device) throw Exception(ErrorCode::LimitExceeded, "Embree: rtcNewDevice failed");
 
   // The vertices are read from the BVH's own triangles: each BvhTriangle is
   // four 16-byte rows (v0, v1, v2, normal, each with a word after it), so
   // with a 16-byte stride triangle i's corners are rows 4i, 4i + 1, 4i + 2.
   // The last row read is a normal, so Embree's 16-byte loads stay inside.
   const std::size_t count = bvh.triangles.size();
-  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry geometry = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, bvh.triangles.data(), 0, 16,
                              4 * count);
   auto* indices = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
-  impl_->check("allocating the index buffer");
+  impl->check("allocating the index buffer");
   for (std::size_t i = 0; i < count; ++i) {
     indices[3 * i + 0] = static_cast<unsigned>(4 * i + 0);
     indices[3 * i + 1] = static_cast<unsigned>(4 * i + 1);
     indices[3 * i + 2] = static_cast<unsigned>(4 * i + 2);
   }
   rtcCommitGeometry(geometry);
-  impl_->scene = rtcNewScene(impl_->device);
-  rtcAttachGeometry(impl_->scene, geometry);
+  impl->scene = rtcNewScene(impl->device);
+  rtcAttachGeometry(impl->scene, geometry);
   rtcReleaseGeometry(geometry);
-  rtcCommitScene(impl_->scene);
-  impl_->check("building the scene");
+  rtcCommitScene(impl->scene);
+  impl->check("building the scene");
+  return impl;
 }
 
 HitInfo EmbreeTraversal::closest_hit(glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) const {
@@ -89,9 +92,8 @@ HitInfo EmbreeTraversal::closest_hit(glm::vec3 origin, glm::vec3 dir, float tmin
 
 struct EmbreeTraversal::Impl {};
 
-EmbreeTraversal::EmbreeTraversal(const Bvh&, unsigned) {
-  throw Exception(ErrorCode::InvalidConfig,
-                  "cpu_traversal: Embree needs soundpaint built with -DSOUNDPAINT_EMBREE=ON (Debian: libembree-dev)");
+std::unique_ptr<EmbreeTraversal::Impl> EmbreeTraversal::build(const Bvh&, unsigned) {
+  throw Exception(ErrorCode::InvalidConfig, std::string("cpu_traversal: Embree ") + kEmbreeBuildHint);
 }
 
 HitInfo EmbreeTraversal::closest_hit(glm::vec3, glm::vec3, float, float tmax) const {
@@ -103,7 +105,14 @@ HitInfo EmbreeTraversal::closest_hit(glm::vec3, glm::vec3, float, float tmax) co
 
 #endif
 
+EmbreeTraversal::EmbreeTraversal(const Bvh& bvh, unsigned threads)
+    : bvh_(&bvh), threads_(threads), impl_(build(bvh, threads)) {}
+
 EmbreeTraversal::~EmbreeTraversal() = default;
+
+void EmbreeTraversal::update(const BvhChanges& changes) {
+  if (!changes.triangles.empty()) impl_ = build(*bvh_, threads_);
+}
 
 std::unique_ptr<EmbreeTraversal> make_cpu_traversal(const Config& config, const Bvh& bvh, unsigned threads) {
   if (config.cpu_traversal != CpuTraversal::Embree) return nullptr;

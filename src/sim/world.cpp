@@ -6,6 +6,7 @@
 
 #include "bvh/diffraction_edges.h"
 #include "bvh/mesh_topology.h"
+#include "config/build_features.h"
 #include "core/finite.h"
 #include "core/glm_interop.h"
 #include "display/display_checks.h"
@@ -89,7 +90,7 @@ void check_config(const Config& c) {
   }
   if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
   if (c.cpu_traversal == CpuTraversal::Embree && !embree_available())
-    fail("cpu_traversal: Embree needs soundpaint built with -DSOUNDPAINT_EMBREE=ON (Debian: libembree-dev)");
+    fail(std::string("cpu_traversal: Embree ") + kEmbreeBuildHint);
   if (c.cpu_traversal != CpuTraversal::Soundpaint && c.cpu_traversal != CpuTraversal::Embree)
     fail("cpu_traversal is not a CpuTraversal value");
   check_display_settings(c.display);
