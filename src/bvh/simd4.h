@@ -211,7 +211,7 @@ struct alignas(16) Vec4 {
   void set(int i, float x) { v[i] = x; }
 };
 
-namespace simd4_detail {
+namespace detail_simd4 {
 template <class F>
 inline Vec4 map(Vec4 a, Vec4 b, F f) {
   return Vec4(f(a.v[0], b.v[0]), f(a.v[1], b.v[1]), f(a.v[2], b.v[2]), f(a.v[3], b.v[3]));
@@ -222,32 +222,32 @@ inline Int4 compare(Vec4 a, Vec4 b, F f) {
   for (int i = 0; i < 4; ++i) r.v[i] = f(a.v[i], b.v[i]) ? -1 : 0;
   return r;
 }
-}  // namespace simd4_detail
+}  // namespace detail_simd4
 
 inline Vec4 splat(float x) { return Vec4(x, x, x, x); }
 inline Vec4 operator+(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x + y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x + y; });
 }
 inline Vec4 operator-(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x - y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x - y; });
 }
 inline Vec4 operator*(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x * y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x * y; });
 }
 inline Vec4 operator/(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x / y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x / y; });
 }
 inline Int4 operator<(Vec4 a, Vec4 b) {
-  return simd4_detail::compare(a, b, [](float x, float y) { return x < y; });
+  return detail_simd4::compare(a, b, [](float x, float y) { return x < y; });
 }
 inline Int4 operator>(Vec4 a, Vec4 b) {
-  return simd4_detail::compare(a, b, [](float x, float y) { return x > y; });
+  return detail_simd4::compare(a, b, [](float x, float y) { return x > y; });
 }
 inline Int4 operator<=(Vec4 a, Vec4 b) {
-  return simd4_detail::compare(a, b, [](float x, float y) { return x <= y; });
+  return detail_simd4::compare(a, b, [](float x, float y) { return x <= y; });
 }
 inline Int4 operator!=(Vec4 a, Vec4 b) {
-  return simd4_detail::compare(a, b, [](float x, float y) { return x != y; });
+  return detail_simd4::compare(a, b, [](float x, float y) { return x != y; });
 }
 inline Int4 operator&(Int4 a, Int4 b) {
   return Int4{{a.v[0] & b.v[0], a.v[1] & b.v[1], a.v[2] & b.v[2], a.v[3] & b.v[3]}};
@@ -261,10 +261,10 @@ inline Int4 and_not(Int4 a, Int4 b) {
 }
 // a < b ? a : b and a > b ? a : b, lane by lane.
 inline Vec4 vmin(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x < y ? x : y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x < y ? x : y; });
 }
 inline Vec4 vmax(Vec4 a, Vec4 b) {
-  return simd4_detail::map(a, b, [](float x, float y) { return x > y ? x : y; });
+  return detail_simd4::map(a, b, [](float x, float y) { return x > y ? x : y; });
 }
 // mask ? a : b, lane by lane.
 inline Vec4 select(Int4 mask, Vec4 a, Vec4 b) {
