@@ -27,9 +27,9 @@ namespace {
 
 using namespace sp::test;
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+template <class Array>
+bool same_bytes(const Array& a, const Array& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
 }
 
 // The closest hit as (scene index, t), after checking that the wide walk,
@@ -76,9 +76,10 @@ void expect_exact_bounds(const sp::Bvh& bvh) {
 
 // Sorted, disjoint, non-empty, inside [0, size), and covering every entry
 // whose bytes differ between `before` and `after`.
-template <class T>
-void expect_ranges_cover_changes(const std::vector<sp::BvhIndexRange>& ranges, const std::vector<T>& before,
-                                 const std::vector<T>& after) {
+template <class Array>
+void expect_ranges_cover_changes(const std::vector<sp::BvhIndexRange>& ranges, const Array& before,
+                                 const Array& after) {
+  using T = typename Array::value_type;
   ASSERT_EQ(before.size(), after.size());
   std::vector<bool> covered(before.size(), false);
   std::uint32_t previous_last = 0;

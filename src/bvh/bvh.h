@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "bvh/large_array.h"
 #include "soundpaint/math.h"
 #include "soundpaint/result.h"
 #include "soundpaint/simulation.h"
@@ -29,10 +30,10 @@ static_assert(BvhBuildSettings{}.max_depth == SP_BVH_MAX_DEPTH);
 struct WideBvh;
 
 struct Bvh {
-  std::vector<BvhNode> nodes;          // nodes[0] is the root; siblings adjacent
-  std::vector<BvhTriangle> triangles;  // in leaf order; scene_index maps back
-  std::uint32_t depth = 0;             // levels, root included
-  double build_ms = 0.0;               // wall time of build_bvh, the wide tree included
+  LargeArray<BvhNode> nodes;          // nodes[0] is the root; siblings adjacent
+  LargeArray<BvhTriangle> triangles;  // in leaf order; scene_index maps back
+  std::uint32_t depth = 0;            // levels, root included
+  double build_ms = 0.0;              // wall time of build_bvh, the wide tree included
   // `nodes` collapsed into 4-wide SIMD nodes, with the triangles copied into
   // 4-triangle packets, for closest_hit on the CPU; built by build_bvh.
   // Immutable, so copies of a Bvh share it. Null (a tree made by hand) makes

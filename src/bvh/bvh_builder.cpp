@@ -152,7 +152,7 @@ class Builder {
   }
 
   // The input index of each leaf-order triangle.
-  const std::vector<std::uint32_t>& leaf_order() const { return indices_; }
+  const LargeArray<std::uint32_t>& leaf_order() const { return indices_; }
   std::uint32_t depth() const { return depth_; }
   // Whether a pass over `count` triangles is worth splitting across threads.
   bool parallel(std::uint32_t count) const { return spawn_levels_ > 0u && count >= kParallelMin; }
@@ -163,7 +163,7 @@ class Builder {
   // them), and has its own scratch, depth and node array. `nodes` holds the
   // subtree's root at index 0, and its descendants follow in the order the
   // serial build would append them.
-  Builder(const Builder& parent, std::vector<BvhNode>& nodes)
+  Builder(const Builder& parent, LargeArray<BvhNode>& nodes)
       : nodes_(&nodes),
         bins_(parent.bins_),
         max_leaf_size_(parent.max_leaf_size_),
@@ -192,7 +192,7 @@ class Builder {
   bool subdivide_pair_in_parallel(std::uint32_t left, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
                                   std::uint32_t level, const Box& left_centroids, const Box& right_centroids) {
     const std::uint32_t right = left + 1u;
-    std::vector<BvhNode> sub;
+    LargeArray<BvhNode> sub;
     sub.reserve(2u * std::size_t{end - middle} - 1u);
     sub.push_back((*nodes_)[right]);
     Builder worker(*this, sub);
@@ -415,15 +415,15 @@ class Builder {
     return middle;
   }
 
-  std::vector<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
+  LargeArray<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
   std::uint32_t depth_ = 0;
   std::uint32_t bins_ = 16;
   std::uint32_t max_leaf_size_ = 4;
   std::uint32_t max_depth_ = SP_BVH_MAX_DEPTH;
   float traversal_cost_ = 1.0f;
   std::uint32_t spawn_levels_ = 0;  // 0: single-threaded
-  std::vector<Record> records_;     // owned by the top-level builder only
-  std::vector<std::uint32_t> indices_;
+  LargeArray<Record> records_;      // owned by the top-level builder only
+  LargeArray<std::uint32_t> indices_;
   Record* records_ptr_ = nullptr;  // records_ of the top-level builder
   std::uint32_t* indices_ptr_ = nullptr;
   std::vector<Box> bin_boxes_[3];  // per axis
@@ -447,7 +447,7 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   builder.build();
   bvh.depth = builder.depth();
 
-  const std::vector<std::uint32_t>& order = builder.leaf_order();
+  const LargeArray<std::uint32_t>& order = builder.leaf_order();
   // A gather in random order: prefetching a few triangles ahead hides most
   // of the cache misses.
   constexpr std::uint32_t kPrefetch = 16;

@@ -84,8 +84,8 @@ void check_shape(const Bvh& bvh) {
   }
 }
 
-std::vector<BvhTriangle> refit_triangles(const std::vector<BvhTriangle>& old, std::span<const glm::vec3> vertices) {
-  std::vector<BvhTriangle> fresh;
+LargeArray<BvhTriangle> refit_triangles(const LargeArray<BvhTriangle>& old, std::span<const glm::vec3> vertices) {
+  LargeArray<BvhTriangle> fresh;
   fresh.reserve(old.size());
   for (const BvhTriangle& t : old)
     fresh.push_back(make_bvh_triangle(&vertices[3u * std::size_t{t.scene_index}], t.layer, t.scene_index, t.solid));
@@ -95,7 +95,7 @@ std::vector<BvhTriangle> refit_triangles(const std::vector<BvhTriangle>& old, st
 // A leaf's box grown over its triangles' stored corners in leaf order, as
 // the builder's per-triangle records are (a degenerate triangle is stored
 // collapsed onto v0, and its record is that point).
-Box leaf_box(const BvhNode& leaf, const std::vector<BvhTriangle>& triangles) {
+Box leaf_box(const BvhNode& leaf, const LargeArray<BvhTriangle>& triangles) {
   Box box;
   for (std::uint32_t i = leaf.left_or_first; i < leaf.left_or_first + leaf.count; ++i) {
     const BvhTriangle& t = triangles[i];
@@ -120,7 +120,7 @@ glm::vec3 keep_equal_bits(glm::vec3 old, glm::vec3 fresh) {
 
 // Every node's box, bottom-up: one reverse pass, since children come after
 // their parent (check_shape).
-std::vector<BvhNode> refit_nodes(const std::vector<BvhNode>& old, const std::vector<BvhTriangle>& triangles) {
+LargeArray<BvhNode> refit_nodes(const LargeArray<BvhNode>& old, const LargeArray<BvhTriangle>& triangles) {
   std::vector<Box> boxes(old.size());
   for (std::size_t i = old.size(); i-- > 0;) {
     const BvhNode& n = old[i];
@@ -131,7 +131,7 @@ std::vector<BvhNode> refit_nodes(const std::vector<BvhNode>& old, const std::vec
       boxes[i].grow(boxes[n.left_or_first + 1u]);
     }
   }
-  std::vector<BvhNode> fresh(old);
+  LargeArray<BvhNode> fresh(old);
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     fresh[i].bmin = keep_equal_bits(old[i].bmin, to_vec3(boxes[i].lo));
     fresh[i].bmax = keep_equal_bits(old[i].bmax, to_vec3(boxes[i].hi));
@@ -141,7 +141,7 @@ std::vector<BvhNode> refit_nodes(const std::vector<BvhNode>& old, const std::vec
 
 // Indices whose entries differ bitwise, as merged half-open ranges.
 template <class T>
-std::vector<BvhIndexRange> changed_ranges(const std::vector<T>& old, const std::vector<T>& fresh) {
+std::vector<BvhIndexRange> changed_ranges(std::span<const T> old, std::span<const T> fresh) {
   // No padding to compare: every vec3 is paired with a 4-byte scalar (sp_types.h).
   static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % 16u == 0u);
   std::vector<BvhIndexRange> ranges;
@@ -171,7 +171,8 @@ BvhChanges refit(Bvh& bvh, std::span<const glm::vec3> vertices) {
   Bvh next;
   next.triangles = refit_triangles(bvh.triangles, vertices);
   next.nodes = refit_nodes(bvh.nodes, next.triangles);
-  BvhChanges changes{changed_ranges(bvh.nodes, next.nodes), changed_ranges(bvh.triangles, next.triangles), {}};
+  BvhChanges changes{
+      changed_ranges<BvhNode>(bvh.nodes, next.nodes), changed_ranges<BvhTriangle>(bvh.triangles, next.triangles), {}};
   if (changes.nodes.empty() && changes.triangles.empty()) return changes;  // the wide copy and edges still hold
   // Moved faces may meet at other angles, or bury or uncover an edge.
   if (!bvh.edges.empty()) {
@@ -187,7 +188,7 @@ BvhChanges refit(Bvh& bvh, std::span<const glm::vec3> vertices) {
     // Grown by the burying distance, and a weld's width for the rounding.
     const glm::vec3 margin(kBuriedEdgeDistance + 1.0e-3f);
     refresh_exposed_edges(next, lo - margin, hi + margin, next.edges);
-    changes.edges = changed_ranges(bvh.edges, next.edges);
+    changes.edges = changed_ranges<shader::TriangleEdges>(bvh.edges, next.edges);
   }
 
   // A wide copy is immutable and may be shared with copies of `bvh`: build a

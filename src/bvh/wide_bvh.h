@@ -86,8 +86,8 @@ struct alignas(32) TrianglePacket {
 static_assert(sizeof(TrianglePacket) == 160);
 
 struct WideBvh {
-  std::vector<WideNode> nodes;  // nodes[0] is the root; children after their parent
-  std::vector<TrianglePacket> packets;
+  LargeArray<WideNode> nodes;  // nodes[0] is the root; children after their parent
+  LargeArray<TrianglePacket> packets;
   std::uint32_t depth = 0;  // wide levels, root included; <= the binary depth
 };
 

@@ -31,15 +31,17 @@ VkDeviceSize bytes(std::uint64_t count) {
 // Lays out the initial contents of several buffers in one staging buffer.
 class StagingPlan {
  public:
-  template <class T>
-  // `data` is read by fill(), later: it must outlive the plan.
-  void add(const vk::Buffer& destination, const std::vector<T>& data) {
-    parts_.push_back({&destination, size_, data.size() * sizeof(T)});
+  // `data` (a std::vector or LargeArray) is read by fill(), later: it must
+  // outlive the plan.
+  template <class Array>
+  void add(const vk::Buffer& destination, const Array& data) {
+    const std::size_t bytes = data.size() * sizeof(typename Array::value_type);
+    parts_.push_back({&destination, size_, bytes});
     sources_.push_back(data.data());
-    size_ += (data.size() * sizeof(T) + 15) / 16 * 16;
+    size_ += (bytes + 15) / 16 * 16;
   }
-  template <typename T>
-  void add(const vk::Buffer&, const std::vector<T>&&) = delete;  // a temporary would dangle
+  template <class Array>
+  void add(const vk::Buffer&, const Array&&) = delete;  // a temporary would dangle
 
   void fill(vk::Context& context, GpuResources& r) {
     r.initial_staging = vk::Buffer(context, std::max<VkDeviceSize>(size_, 16), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
