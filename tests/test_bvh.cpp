@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -15,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "bvh/bvh.h"
+#include "bvh/wide_bvh.h"
 #include "sp_traverse.h"
 #include "support/bvh_scenes.h"
 
@@ -424,6 +426,69 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
     EXPECT_EQ(0, std::memcmp(other.nodes.data(), serial.nodes.data(), serial.nodes.size() * sizeof(sp::BvhNode)));
     EXPECT_EQ(0, std::memcmp(other.triangles.data(), serial.triangles.data(),
                              serial.triangles.size() * sizeof(sp::BvhTriangle)));
+    // The 4-wide copy, whose root subtrees are collapsed on threads of their own.
+    ASSERT_TRUE(other.wide && serial.wide);
+    EXPECT_EQ(other.wide->depth, serial.wide->depth);
+    ASSERT_EQ(other.wide->nodes.size(), serial.wide->nodes.size());
+    ASSERT_EQ(other.wide->packets.size(), serial.wide->packets.size());
+    EXPECT_EQ(0, std::memcmp(other.wide->nodes.data(), serial.wide->nodes.data(),
+                             serial.wide->nodes.size() * sizeof(sp::WideNode)));
+    EXPECT_EQ(0, std::memcmp(other.wide->packets.data(), serial.wide->packets.data(),
+                             serial.wide->packets.size() * sizeof(sp::TrianglePacket)));
+  }
+  check_invariants(serial, soup, {});
+}
+
+// Nodes of 16,384 triangles or more are partitioned as two halves whose
+// parts then trade places (and binned as two halves on the root). Whatever
+// the threads, every such node must still be split at one plane: on some
+// axis, each left child's centroid lies below each right child's (a binned
+// split sends bins <= k left, and the bin index never decreases along the
+// axis). Centroids are computed as the build does: doubled, min + max.
+TEST(Bvh, LargeNodesAreSplitAtOnePlane) {
+  Soup soup = make_rooms(5, 5, 5, 6);
+  const Soup random = make_random_soup(30000, 5);
+  soup.vertices.insert(soup.vertices.end(), random.vertices.begin(), random.vertices.end());
+  soup.layers.insert(soup.layers.end(), random.layers.begin(), random.layers.end());
+  for (unsigned threads : {1u, 2u}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    sp::BvhBuildSettings settings;
+    settings.threads = threads;
+    const sp::Bvh bvh = sp::build_bvh(soup.vertices, soup.layers, {}, settings);
+    struct Range {
+      std::uint32_t first, last;
+    };
+    // Leaf-order triangle range of each node: a node's leaves are contiguous.
+    std::function<Range(std::uint32_t)> range = [&](std::uint32_t node) -> Range {
+      const sp::BvhNode& n = bvh.nodes[node];
+      if (n.count > 0u) return {n.left_or_first, n.left_or_first + n.count};
+      const Range l = range(n.left_or_first), r = range(n.left_or_first + 1u);
+      EXPECT_EQ(l.last, r.first) << "children of node " << node << " are not contiguous";
+      return {l.first, r.last};
+    };
+    auto centroids = [&](Range r) {
+      std::pair<vec3, vec3> box{vec3(INFINITY), vec3(-INFINITY)};
+      for (std::uint32_t i = r.first; i < r.last; ++i) {
+        const sp::BvhTriangle& t = bvh.triangles[i];
+        const vec3 c = glm::min(glm::min(t.v0, t.v1), t.v2) + glm::max(glm::max(t.v0, t.v1), t.v2);
+        box.first = glm::min(box.first, c);
+        box.second = glm::max(box.second, c);
+      }
+      return box;
+    };
+    std::size_t checked = 0;
+    for (std::uint32_t node = 0; node < bvh.nodes.size(); ++node) {
+      const sp::BvhNode& n = bvh.nodes[node];
+      if (n.count > 0u) continue;
+      const Range left = range(n.left_or_first), right = range(n.left_or_first + 1u);
+      if (right.last - left.first < 16384u) continue;
+      ++checked;
+      const auto [left_lo, left_hi] = centroids(left);
+      const auto [right_lo, right_hi] = centroids(right);
+      EXPECT_TRUE(left_hi.x < right_lo.x || left_hi.y < right_lo.y || left_hi.z < right_lo.z)
+          << "node " << node << " (" << right.last - left.first << " triangles) is not split at one plane";
+    }
+    EXPECT_GE(checked, 7u);  // the root and at least two levels below it
   }
 }
 

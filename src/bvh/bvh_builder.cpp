@@ -12,7 +12,11 @@
 // are appended as a pair, which gives the adjacency the traversal relies on
 // without a separate flattening pass. Scratch memory is allocated once per
 // build; nodes of at most kSmallNode triangles, the large majority, take an
-// exact sweep instead of bins.
+// exact sweep instead of bins. Threads: the root's passes over all triangles
+// (binning, partition, child bounds) run as two halves on two threads, the
+// subtrees near the root on threads of their own, and the big arrays sit on
+// huge pages (large_array.h), whose first-touch faults otherwise cost more
+// than the build in a virtual machine.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -42,25 +46,36 @@ constexpr std::uint32_t kSmallNode = 8;
 // worth a thread start.
 constexpr std::uint32_t kParallelMin = 16384;
 
+// Runs `a` on another thread and `b` on this one when `concurrent` (and a
+// thread can be started), else both here; returns when both are done.
+template <class A, class B>
+void run_both(bool concurrent, A&& a, B&& b) {
+  std::future<void> other;
+  if (concurrent) {
+    try {
+      other = std::async(std::launch::async, [&a] { a(); });
+    } catch (const std::system_error&) {
+      // no thread to be had: `a` runs here below
+    }
+  }
+  // If b throws (bad_alloc), the future's destructor still waits for a.
+  b();
+  if (other.valid()) {
+    other.get();
+  } else {
+    a();
+  }
+}
+
 // Runs f(begin, end) over [0, count): split in two halves, one on another
-// thread, when `parallel` (and a thread can be started), else in one call.
-// For loops whose iterations write disjoint elements only.
+// thread, when `parallel`, else in one call. For loops whose iterations
+// write disjoint elements only.
 template <class F>
 void for_halves(bool parallel, std::uint32_t count, F&& f) {
-  if (parallel) {
-    const std::uint32_t mid = count / 2u;
-    std::future<void> other;
-    try {
-      other = std::async(std::launch::async, [&f, mid] { f(0u, mid); });
-    } catch (const std::system_error&) {
-      f(0u, count);
-      return;
-    }
-    f(mid, count);
-    other.get();
-    return;
-  }
-  f(0u, count);
+  if (!parallel) return f(0u, count);
+  const std::uint32_t mid = count / 2u;
+  run_both(
+      true, [&f, mid] { f(0u, mid); }, [&f, mid, count] { f(mid, count); });
 }
 
 // One triangle's bounds. The centroid used for splitting is the bounds
@@ -96,6 +111,29 @@ struct Binning {
   // [0, bins * (1 + rounding)]; the top edge goes to the last bin. Clamped
   // in float, where SSE2 has a vector min (minps) and integers have none.
   Int4 bin(Vec4 doubled_centroid) const { return to_int4(vmin((doubled_centroid - origin) * scale, last)); }
+};
+
+// Per-axis bins of one binning pass: each bin's bounds and triangle count.
+struct BinTable {
+  std::vector<Box> boxes[3];
+  std::vector<std::uint32_t> counts[3];
+
+  void reset(std::uint32_t bins) {
+    for (int a = 0; a < 3; ++a) {
+      boxes[a].assign(bins, Box{});
+      counts[a].assign(bins, 0u);
+    }
+  }
+  // Adds `other`'s triangles: bounds and counts combine exactly, so two
+  // halves binned apart and merged equal one pass over the whole.
+  void merge(const BinTable& other, std::uint32_t bins) {
+    for (int a = 0; a < 3; ++a) {
+      for (std::uint32_t b = 0; b < bins; ++b) {
+        boxes[a][b].grow(other.boxes[a][b]);
+        counts[a][b] += other.counts[a][b];
+      }
+    }
+  }
 };
 
 // The best split found for a node.
@@ -176,10 +214,7 @@ class Builder {
   }
 
   void allocate_scratch() {
-    for (int a = 0; a < 3; ++a) {
-      bin_boxes_[a].resize(bins_);
-      bin_counts_[a].resize(bins_);
-    }
+    bin_table_.reset(bins_);
     right_area_.resize(bins_);
     right_count_.resize(bins_);
   }
@@ -223,12 +258,17 @@ class Builder {
   static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
 
   // Bounds of [begin, end) and of its doubled centroids.
+  // Accumulated in locals: the compiler cannot keep boxes behind references
+  // in registers.
   void measure(std::uint32_t begin, std::uint32_t end, Box& bounds, Box& centroids) const {
+    Box b = bounds, c = centroids;
     for (std::uint32_t i = begin; i < end; ++i) {
       const Record& r = records_ptr_[i];
-      bounds.grow(r.lo, r.hi);
-      centroids.grow(r.lo + r.hi);
+      b.grow(r.lo, r.hi);
+      c.grow(r.lo + r.hi);
     }
+    bounds = b;
+    centroids = c;
   }
 
   void subdivide(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::uint32_t level,
@@ -239,6 +279,9 @@ class Builder {
     // entry per level and must never overflow.
     if (count == 1u || level >= max_depth_) return make_leaf(node, begin, count);
 
+    // The root's passes over all triangles run on two threads; below it, the
+    // subtrees do (subdivide_pair_in_parallel).
+    const bool concurrent = level == 1u && parallel(count);
     const bool small = count <= kSmallNode;
     Binning binning;
     Split split;
@@ -248,7 +291,7 @@ class Builder {
       // A node with fewer triangles than bins gets as many bins as
       // triangles: the planes it loses lie between empty bins.
       binning = Binning(centroids, std::min(bins_, count));
-      split = find_split(begin, end, binning);
+      split = find_split(begin, end, binning, concurrent);
     }
     if (count <= max_leaf_size_) {
       // Small enough for a leaf: split only where the SAH says it pays off.
@@ -264,7 +307,7 @@ class Builder {
       apply_small_split(begin, count, split);
       middle = begin + static_cast<std::uint32_t>(split.last_left);
     } else if (split.valid) {
-      middle = partition(begin, end, binning, split);
+      middle = partition(begin, end, binning, split, concurrent);
     } else {
       // All centroids coincide (or are too close to bin): no plane separates
       // them, so halve the range to keep leaves within max_leaf_size.
@@ -273,8 +316,14 @@ class Builder {
     // One pass per child for bounds and centroid bounds: cheaper than
     // carrying them through the partition with branch-free selects.
     Box left, right, left_centroids, right_centroids;
-    measure(begin, middle, left, left_centroids);
-    measure(middle, end, right, right_centroids);
+    if (concurrent) {
+      run_both(
+          true, [&] { measure(middle, end, right, right_centroids); },
+          [&] { measure(begin, middle, left, left_centroids); });
+    } else {
+      measure(begin, middle, left, left_centroids);
+      measure(middle, end, right, right_centroids);
+    }
 
     const auto children = static_cast<std::uint32_t>(nodes_->size());
     (*nodes_)[node].left_or_first = children;
@@ -351,27 +400,24 @@ class Builder {
 
   // Evaluates the bins - 1 planes of each axis with one pass over the
   // triangles and two sweeps over the bins.
-  Split find_split(std::uint32_t begin, std::uint32_t end, const Binning& binning) {
+  // With `concurrent`, the two halves of the pass run on two threads.
+  Split find_split(std::uint32_t begin, std::uint32_t end, const Binning& binning, bool concurrent) {
     const std::uint32_t bins = binning.bins;
-    for (int a = 0; a < 3; ++a) {
-      std::fill_n(bin_boxes_[a].begin(), bins, Box{});
-      std::fill_n(bin_counts_[a].begin(), bins, 0u);
-    }
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Record& r = records_ptr_[i];
-      const Int4 b = binning.bin(r.lo + r.hi);
-      for (int a = 0; a < 3; ++a) {
-        const auto k = static_cast<std::uint32_t>(b[a]);
-        bin_boxes_[a][k].grow(r.lo, r.hi);
-        bin_counts_[a][k] += 1u;
-      }
+    if (concurrent) {
+      const std::uint32_t mid = begin + (end - begin) / 2u;
+      run_both(
+          true, [&] { bin_range(mid, end, binning, other_half_); },
+          [&] { bin_range(begin, mid, binning, bin_table_); });
+      bin_table_.merge(other_half_, bins);
+    } else {
+      bin_range(begin, end, binning, bin_table_);
     }
 
     Split best;
     for (int a = 0; a < 3; ++a) {
       if (binning.scale[a] == 0.0f) continue;
-      const Box* boxes = bin_boxes_[a].data();
-      const std::uint32_t* counts = bin_counts_[a].data();
+      const Box* boxes = bin_table_.boxes[a].data();
+      const std::uint32_t* counts = bin_table_.counts[a].data();
       // Right-to-left sweep: area and count of bins [b, bins). An empty
       // bin's box is empty, and growing by it changes nothing.
       Box acc;
@@ -397,10 +443,53 @@ class Builder {
     return best;
   }
 
-  // In-place partition by the chosen plane. Branch-free Lomuto: the side
-  // test is a coin flip for the branch predictor, so every element is swapped
-  // and `middle` advances only for left ones.
-  std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split) {
+  // Bins records [begin, end) into `table`'s first binning.bins bins.
+  void bin_range(std::uint32_t begin, std::uint32_t end, const Binning& binning, BinTable& table) const {
+    table.reset(binning.bins);
+    // Plain pointers: stores through them cannot move the vectors' own.
+    Box* const boxes[3] = {table.boxes[0].data(), table.boxes[1].data(), table.boxes[2].data()};
+    std::uint32_t* const counts[3] = {table.counts[0].data(), table.counts[1].data(), table.counts[2].data()};
+    const Binning bins = binning;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Record& r = records_ptr_[i];
+      const Int4 b = bins.bin(r.lo + r.hi);
+      for (int a = 0; a < 3; ++a) {
+        const auto k = static_cast<std::uint32_t>(b[a]);
+        boxes[a][k].grow(r.lo, r.hi);
+        counts[a][k] += 1u;
+      }
+    }
+  }
+
+  // In-place partition by the chosen plane; returns the first right one. A
+  // range of kParallelMin or more is partitioned as two halves (on two
+  // threads when `concurrent`), then the first half's right part and the
+  // second half's left part trade places. Which ranges are halved depends on
+  // their size alone, never on the threads, so the tree is the same for any
+  // thread count.
+  std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split,
+                          bool concurrent) {
+    if (end - begin < kParallelMin) return partition_range(begin, end, binning, split);
+    const std::uint32_t mid = begin + (end - begin) / 2u;
+    std::uint32_t first_right = 0, second_right = 0;
+    run_both(
+        concurrent, [&] { second_right = partition_range(mid, end, binning, split); },
+        [&] { first_right = partition_range(begin, mid, binning, split); });
+    // [begin, first_right) left, [first_right, mid) right, [mid,
+    // second_right) left, [second_right, end) right: swap the shorter of the
+    // two middle runs with the far end of the other.
+    const std::uint32_t swapped = std::min(mid - first_right, second_right - mid);
+    std::swap_ranges(records_ptr_ + first_right, records_ptr_ + first_right + swapped,
+                     records_ptr_ + second_right - swapped);
+    std::swap_ranges(indices_ptr_ + first_right, indices_ptr_ + first_right + swapped,
+                     indices_ptr_ + second_right - swapped);
+    return first_right + (second_right - mid);
+  }
+
+  // Branch-free Lomuto: the side test is a coin flip for the branch
+  // predictor, so every element is swapped and `middle` advances only for
+  // left ones.
+  std::uint32_t partition_range(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split) {
     std::uint32_t middle = begin;
     for (std::uint32_t i = begin; i < end; ++i) {
       const Record r = records_ptr_[i];
@@ -426,8 +515,8 @@ class Builder {
   LargeArray<std::uint32_t> indices_;
   Record* records_ptr_ = nullptr;  // records_ of the top-level builder
   std::uint32_t* indices_ptr_ = nullptr;
-  std::vector<Box> bin_boxes_[3];  // per axis
-  std::vector<std::uint32_t> bin_counts_[3];
+  BinTable bin_table_;
+  BinTable other_half_;  // the second half's bins of a pass split in two
   std::vector<float> right_area_;
   std::vector<std::uint32_t> right_count_;
   std::uint8_t small_order_[3][kSmallNode] = {};  // per axis, from find_small_split
@@ -477,7 +566,7 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   }
   // The CPU backend's 4-wide copy (wide_bvh.h): one linear pass, ~0.3 ms
   // of the ~2.5 ms build of scenes/level.gltf.
-  bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh));
+  bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.parallel(count)));
   bvh.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
+#include <future>
+#include <system_error>
 #include <limits>
 
 #include "sp_traverse.h"
@@ -23,20 +25,94 @@ constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
 
 // ---------------------------------------------------------------- collapse
 
-class Collapser {
- public:
-  Collapser(const Bvh& bvh, WideBvh& wide) : bvh_(bvh), wide_(wide) {}
+// The slots of the wide node that replaces binary interior node `binary`:
+// slots 2g and 2g + 1 hold the children of child g of `binary` (g = 0:
+// left), or child g itself in slot 2g when it is a leaf; SP_INVALID where
+// unused.
+void wide_slots(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWideArity]) {
+  for (std::uint32_t s = 0; s < kWideArity; ++s) slots[s] = SP_INVALID;
+  for (std::uint32_t g = 0; g < 2u; ++g) {
+    const std::uint32_t child = bvh.nodes[binary].left_or_first + g;
+    const BvhNode& n = bvh.nodes[child];
+    slots[2u * g] = n.count > 0u ? child : n.left_or_first;
+    if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
+  }
+}
 
-  void build() {
-    if (bvh_.nodes[0].count > 0u) {  // a single leaf: a wide root with one slot
-      WideNode root = empty_node();
-      fill_slot(root, 0u, 0u);
-      wide_.nodes.push_back(root);
-      wide_.depth = 1u;
+std::uint32_t packets_of_leaf(const BvhNode& leaf) { return (leaf.count + kWideArity - 1u) / kWideArity; }
+
+// What the collapse of a binary subtree writes: its wide nodes and packets.
+struct CollapseSize {
+  std::uint32_t nodes = 0;
+  std::uint32_t packets = 0;
+};
+
+// The size of the collapse of binary interior node `binary`'s subtree,
+// walking the same slots collapse() does, so the output can be laid out
+// before it is written (and subtrees written concurrently).
+CollapseSize collapse_size(const Bvh& bvh, std::uint32_t binary) {
+  CollapseSize size{1u, 0u};
+  std::uint32_t slots[kWideArity];
+  wide_slots(bvh, binary, slots);
+  for (const std::uint32_t slot : slots) {
+    if (slot == SP_INVALID) continue;
+    const BvhNode& n = bvh.nodes[slot];
+    if (n.count > 0u) {
+      size.packets += packets_of_leaf(n);
     } else {
-      collapse(0u, 1u);
+      const CollapseSize child = collapse_size(bvh, slot);
+      size.nodes += child.nodes;
+      size.packets += child.packets;
     }
   }
+  return size;
+}
+
+// Writes the collapse of one binary subtree into `wide`, whose arrays are
+// already sized, from the given node and packet positions on: the wide
+// nodes in depth-first order (children after their parent), each leaf's
+// packets when its slot is filled. Collapsers of disjoint subtrees, given
+// the positions a serial collapse would reach, write disjoint parts of the
+// same arrays and together write exactly what one serial collapse writes.
+class Collapser {
+ public:
+  Collapser(const Bvh& bvh, WideBvh& wide, CollapseSize cursor) : bvh_(bvh), wide_(wide), cursor_(cursor) {}
+
+  // The wide node of binary interior node `binary` at wide level `level`,
+  // and its subtree; returns its index.
+  std::uint32_t collapse(std::uint32_t binary, std::uint32_t level) {
+    std::uint32_t slots[kWideArity];
+    const std::uint32_t index = write_node(binary, level, slots);
+    for (std::uint32_t s = 0; s < kWideArity; ++s) {
+      if (slots[s] != SP_INVALID && bvh_.nodes[slots[s]].count == 0u) {
+        wide_.nodes[index].slot[s].child = collapse(slots[s], level + 1u);
+      }
+    }
+    return index;
+  }
+
+  // The wide node of binary interior node `binary` alone, with its leaf
+  // slots' packets; its interior slots' children are left for the caller.
+  std::uint32_t write_node(std::uint32_t binary, std::uint32_t level, std::uint32_t (&slots)[kWideArity]) {
+    depth_ = std::max(depth_, level);
+    wide_slots(bvh_, binary, slots);
+    const std::uint32_t index = cursor_.nodes++;
+    WideNode& node = wide_.nodes[index];
+    node = empty_node();
+    for (std::uint32_t s = 0; s < kWideArity; ++s)
+      if (slots[s] != SP_INVALID) fill_slot(node, s, slots[s]);
+    return index;
+  }
+
+  // The root when it is a single leaf: a wide root with one slot.
+  void collapse_leaf_root() {
+    depth_ = 1u;
+    WideNode& root = wide_.nodes[cursor_.nodes++];
+    root = empty_node();
+    fill_slot(root, 0u, 0u);
+  }
+
+  std::uint32_t depth() const { return depth_; }
 
  private:
   static WideNode empty_node() {
@@ -53,41 +129,12 @@ class Collapser {
       node.bounds[a].set(static_cast<int>(slot), n.bmin[a]);
       node.bounds[3 + a].set(static_cast<int>(slot), n.bmax[a]);
     }
-    if (n.count > 0u)
-      node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), (n.count + kWideArity - 1u) / kWideArity};
-  }
-
-  // The wide node of binary interior node `binary` at wide level `level`,
-  // and its subtree; returns its index. Slots 2g and 2g + 1 hold the
-  // children of child g of `binary` (g = 0: left), or child g itself in slot
-  // 2g when it is a leaf.
-  std::uint32_t collapse(std::uint32_t binary, std::uint32_t level) {
-    wide_.depth = std::max(wide_.depth, level);
-    std::uint32_t slots[kWideArity] = {SP_INVALID, SP_INVALID, SP_INVALID, SP_INVALID};
-    for (std::uint32_t g = 0; g < 2u; ++g) {
-      const std::uint32_t child = bvh_.nodes[binary].left_or_first + g;
-      const BvhNode& n = bvh_.nodes[child];
-      slots[2u * g] = n.count > 0u ? child : n.left_or_first;
-      if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
-    }
-    WideNode node = empty_node();
-    for (std::uint32_t s = 0; s < kWideArity; ++s)
-      if (slots[s] != SP_INVALID) fill_slot(node, s, slots[s]);
-    const auto index = static_cast<std::uint32_t>(wide_.nodes.size());
-    wide_.nodes.push_back(node);
-    // Children after the parent is stored: collapse() appends nodes.
-    for (std::uint32_t s = 0; s < kWideArity; ++s) {
-      if (slots[s] != SP_INVALID && bvh_.nodes[slots[s]].count == 0u) {
-        const std::uint32_t child = collapse(slots[s], level + 1u);
-        wide_.nodes[index].slot[s].child = child;
-      }
-    }
-    return index;
+    if (n.count > 0u) node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), packets_of_leaf(n)};
   }
 
   // Packs leaf triangles [first, first + count); returns the first packet.
   std::uint32_t add_packets(std::uint32_t first, std::uint32_t count) {
-    const auto start = static_cast<std::uint32_t>(wide_.packets.size());
+    const std::uint32_t start = cursor_.packets;
     for (std::uint32_t base = 0; base < count; base += kWideArity) {
       TrianglePacket p{};  // padding lanes: vertices at the origin
       for (std::uint32_t lane = 0; lane < kWideArity; ++lane) {
@@ -102,13 +149,15 @@ class Collapser {
           for (int a = 0; a < 3; ++a) p.v[k][a].set(static_cast<int>(lane), v[k][a]);
         p.triangle[lane] = i;
       }
-      wide_.packets.push_back(p);
+      wide_.packets[cursor_.packets++] = p;
     }
     return start;
   }
 
   const Bvh& bvh_;
   WideBvh& wide_;
+  CollapseSize cursor_;
+  std::uint32_t depth_ = 0;
 };
 
 // --------------------------------------------------------------- traversal
@@ -345,15 +394,68 @@ void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, C
 
 }  // namespace
 
-WideBvh build_wide_bvh(const Bvh& bvh) {
+WideBvh build_wide_bvh(const Bvh& bvh, bool parallel) {
   assert(!bvh.nodes.empty());
   WideBvh wide;
-  // Between one wide node per binary interior node and one per three
-  // (n nodes have (n - 1) / 2 interior ones); one packet per leaf of up to
-  // four triangles.
-  wide.nodes.reserve(bvh.nodes.size() / 4u + 1u);
-  wide.packets.reserve(bvh.nodes.size() / 2u + 1u);
-  Collapser(bvh, wide).build();
+  if (bvh.nodes[0].count > 0u) {
+    wide.nodes.resize(1u);
+    wide.packets.resize(packets_of_leaf(bvh.nodes[0]));
+    Collapser collapser(bvh, wide, {});
+    collapser.collapse_leaf_root();
+    wide.depth = collapser.depth();
+    return wide;
+  }
+  // Laid out as one serial collapse writes it: the root's node and its leaf
+  // slots' packets, then the subtree of each interior slot in slot order.
+  // Sizing the subtrees first tells each one where it writes.
+  std::uint32_t slots[kWideArity];
+  wide_slots(bvh, 0u, slots);
+  auto interior = [&](std::uint32_t s) { return slots[s] != SP_INVALID && bvh.nodes[slots[s]].count == 0u; };
+  CollapseSize start[kWideArity] = {};
+  CollapseSize total{1u, 0u};
+  for (std::uint32_t s = 0; s < kWideArity; ++s)
+    if (slots[s] != SP_INVALID && !interior(s)) total.packets += packets_of_leaf(bvh.nodes[slots[s]]);
+  for (std::uint32_t s = 0; s < kWideArity; ++s) {
+    if (!interior(s)) continue;
+    start[s] = total;
+    const CollapseSize size = collapse_size(bvh, slots[s]);
+    total.nodes += size.nodes;
+    total.packets += size.packets;
+  }
+  wide.nodes.resize(total.nodes);
+  wide.packets.resize(total.packets);
+
+  Collapser root(bvh, wide, {});
+  root.write_node(0u, 1u, slots);
+  wide.depth = root.depth();
+  // The subtrees write disjoint parts of the arrays, so they may run on
+  // other threads; the last one runs here.
+  std::uint32_t subtree_depth[kWideArity] = {};
+  std::future<void> others[kWideArity];
+  std::uint32_t last_interior = 0;
+  for (std::uint32_t s = 0; s < kWideArity; ++s)
+    if (interior(s)) last_interior = s;
+  for (std::uint32_t s = 0; s < kWideArity; ++s) {
+    if (!interior(s)) continue;
+    wide.nodes[0].slot[s].child = start[s].nodes;
+    auto collapse_subtree = [&bvh, &wide, &slots, &start, &subtree_depth, s] {
+      Collapser collapser(bvh, wide, start[s]);
+      collapser.collapse(slots[s], 2u);
+      subtree_depth[s] = collapser.depth();
+    };
+    if (parallel && s != last_interior) {
+      try {
+        others[s] = std::async(std::launch::async, collapse_subtree);
+        continue;
+      } catch (const std::system_error&) {  // no thread to be had: collapse it here
+      }
+    }
+    collapse_subtree();
+  }
+  for (std::uint32_t s = 0; s < kWideArity; ++s) {
+    if (others[s].valid()) others[s].get();
+    wide.depth = std::max(wide.depth, subtree_depth[s]);
+  }
   return wide;
 }
 

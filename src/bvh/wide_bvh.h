@@ -91,10 +91,11 @@ struct WideBvh {
   std::uint32_t depth = 0;  // wide levels, root included; <= the binary depth
 };
 
-// Collapses `bvh`. Precondition: bvh.nodes is not empty, and every interior
+// Collapses `bvh`; with `parallel`, the root's subtrees on threads of their
+// own (the result is the same either way). Precondition: bvh.nodes is not empty, and every interior
 // node's box is exactly the union of its children's, as build_bvh makes it
 // (the traversal derives a parent's entry distance from its children's).
-WideBvh build_wide_bvh(const Bvh& bvh);
+WideBvh build_wide_bvh(const Bvh& bvh, bool parallel = false);
 
 // sp_closest_hit's answer for `bvh`, from `wide` = build_wide_bvh(bvh).
 HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
