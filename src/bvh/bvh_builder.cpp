@@ -45,6 +45,11 @@ constexpr std::uint32_t kSmallNode = 8;
 // (near the root only; see Builder::spawn_levels_). Smaller subtrees are not
 // worth a thread start.
 constexpr std::uint32_t kParallelMin = 16384;
+// The root's passes (binning, partition, child bounds) and the wide copy's
+// subtrees go to a second thread only from this many triangles on: on the
+// benchmark VM, doing so at 30k triangles made the build 3x slower (4.7 ->
+// 15 ms; bench/RESULTS.md section 12), while at 252k and 1M it pays.
+constexpr std::uint32_t kConcurrentPassMin = 131072;
 
 // Runs `a` on another thread and `b` on this one when `concurrent` (and a
 // thread can be started), else both here; returns when both are done.
@@ -281,7 +286,7 @@ class Builder {
 
     // The root's passes over all triangles run on two threads; below it, the
     // subtrees do (subdivide_pair_in_parallel).
-    const bool concurrent = level == 1u && parallel(count);
+    const bool concurrent = level == 1u && parallel(count) && count >= kConcurrentPassMin;
     const bool small = count <= kSmallNode;
     Binning binning;
     Split split;
@@ -566,7 +571,8 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   }
   // The CPU backend's 4-wide copy (wide_bvh.h): one linear pass, ~0.3 ms
   // of the ~2.5 ms build of scenes/level.gltf.
-  bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.parallel(count)));
+  bvh.wide =
+      std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.parallel(count) && count >= kConcurrentPassMin));
   bvh.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }
