@@ -545,7 +545,11 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   // A gather in random order: prefetching a few triangles ahead hides most
   // of the cache misses.
   constexpr std::uint32_t kPrefetch = 16;
-  auto gather = [&](std::uint32_t first, std::uint32_t last, auto&& store) {
+  // Written in place, in two halves on two threads for a large scene;
+  // resize() leaves the elements to be written here (large_array.h).
+  bvh.triangles.resize(count);
+  BvhTriangle* out = bvh.triangles.data();
+  for_halves(builder.parallel(count), count, [&](std::uint32_t first, std::uint32_t last) {
     for (std::uint32_t i = first; i < last; ++i) {
       if (i + kPrefetch < last) {
         const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
@@ -554,21 +558,9 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
       }
       const std::uint32_t source = order[i];
       const std::uint32_t solid = source < solids.size() ? solids[source] : source;
-      store(i, make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source, solid));
+      out[i] = make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source, solid);
     }
-  };
-  if (builder.parallel(count)) {
-    // Two halves written in place; the zeroing resize() costs less than the
-    // second core saves.
-    bvh.triangles.resize(count);
-    BvhTriangle* out = bvh.triangles.data();
-    for_halves(true, count, [&](std::uint32_t first, std::uint32_t last) {
-      gather(first, last, [out](std::uint32_t i, const BvhTriangle& t) { out[i] = t; });
-    });
-  } else {
-    bvh.triangles.reserve(count);  // not resize(): every element is written once
-    gather(0u, count, [&bvh](std::uint32_t, const BvhTriangle& t) { bvh.triangles.push_back(t); });
-  }
+  });
   // The CPU backend's 4-wide copy (wide_bvh.h): one linear pass, ~0.3 ms
   // of the ~2.5 ms build of scenes/level.gltf.
   bvh.wide =
