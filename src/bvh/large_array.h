@@ -14,7 +14,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
+#include <limits>
 #include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -50,13 +53,11 @@ struct LargeArrayAllocator {
     return static_cast<T*>(p);
   }
 
+  // The unsized aligned delete: the sized one is declared only where the
+  // compiler enables sized deallocation (clang before 19 does not).
   void deallocate(T* p, std::size_t n) noexcept {
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < kLargeArrayBytes) {
-      ::operator delete (p, bytes, std::align_val_t{alignof(T)});
-    } else {
-      ::operator delete (p, round_up(bytes), std::align_val_t{kHugePageBytes});
-    }
+    ::operator delete (p, std::align_val_t{bytes < kLargeArrayBytes ? alignof(T) : kHugePageBytes});
   }
 
   // resize() and the sizing constructor default-initialise, as `new T[n]`
@@ -64,23 +65,35 @@ struct LargeArrayAllocator {
   // writes each element once, on two threads; zeroing first was a serial
   // pass over the whole array that cost more than the writing (1M
   // triangles: the gather took 37 ms on two threads against 21 on one).
-  // Write every element that resize() adds.
+  // Write every element that resize() adds: builds with assertions fill
+  // them with 0xFF bytes first (NaN floats, SP_INVALID indices), so that an
+  // element left unwritten shows in the tests instead of reading as zero.
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     if constexpr (sizeof...(Args) == 0) {
+#ifndef NDEBUG
+      if constexpr (std::is_trivially_default_constructible_v<U>) std::memset(static_cast<void*>(p), 0xFF, sizeof(U));
+#endif
       ::new (static_cast<void*>(p)) U;
     } else {
       ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
   }
 
-  static constexpr std::size_t max_size() noexcept { return (std::size_t{1} << 60) / sizeof(T); }
-
-  friend bool operator==(const LargeArrayAllocator&, const LargeArrayAllocator&) noexcept { return true; }
+  // Leaves room to round up to a whole huge page without overflow.
+  static constexpr std::size_t max_size() noexcept {
+    return (std::numeric_limits<std::size_t>::max() - kHugePageBytes) / sizeof(T);
+  }
 
  private:
   static std::size_t round_up(std::size_t bytes) { return (bytes + kHugePageBytes - 1u) & ~(kHugePageBytes - 1u); }
 };
+
+// Stateless: any two allocate and free each other's arrays.
+template <class T, class U>
+bool operator==(const LargeArrayAllocator<T>&, const LargeArrayAllocator<U>&) noexcept {
+  return true;
+}
 
 template <class T>
 using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
