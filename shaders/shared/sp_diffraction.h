@@ -25,7 +25,6 @@
 // bisector, so that it never strikes the two faces that meet there.
 #define SP_DIFFRACTION_OFFSET 1.0e-3f
 #define SP_HALF_PI 1.57079633f
-#define SP_PI 3.14159265f
 
 SP_BEGIN_NAMESPACE
 

@@ -59,4 +59,8 @@ SP_END_NAMESPACE
 #define SP_CHECK_LAYOUT(condition)
 
 #endif
+
+// pi as a float, for both languages (GLSL has no constant of its own).
+#define SP_PI 3.14159265f
+
 #endif  // SP_LANG_H

@@ -58,8 +58,6 @@
 // (tests/test_shapes.cpp measures it; the vertex shader enforces it).
 #define SP_SHAPE_MIN_PIXELS 16.0f
 
-#define SP_SHAPE_PI 3.14159265f
-
 // The comet's tail (indicator_fragment.glsl): it starts SP_TAIL_START radii
 // behind the centre, SP_TAIL_ROOT_WIDTH wide (half-width, in radii), and
 // narrows to SP_TAIL_TIP_WIDTH at its end.
@@ -77,7 +75,7 @@ SP_INLINE vec2 sp_fold_to_wedge(vec2 p, float n) {
   float radius = length(p);
   // atan(0, 0) is undefined in GLSL; at the origin any angle will do.
   float angle = radius > 0.0f ? atan(p.y, p.x) : 0.0f;
-  float half_wedge = SP_SHAPE_PI / n;
+  float half_wedge = SP_PI / n;
   float folded = abs(mod(angle + half_wedge, 2.0f * half_wedge) - half_wedge);
   return radius * vec2(cos(folded), sin(folded));
 }
@@ -99,12 +97,12 @@ SP_INLINE float sp_edge_distance(vec2 q, vec2 a, vec2 b) {
 // cos(pi/n) the corners fall on straight edges and it is a regular polygon.
 SP_INLINE float sp_star_distance(vec2 p, float n, float outer, float inner) {
   vec2 q = sp_fold_to_wedge(p, n);
-  float half_wedge = SP_SHAPE_PI / n;
+  float half_wedge = SP_PI / n;
   return sp_edge_distance(q, vec2(outer, 0.0f), inner * vec2(cos(half_wedge), sin(half_wedge)));
 }
 
 SP_INLINE float sp_regular_polygon_distance(vec2 p, float n, float circumradius) {
-  return sp_star_distance(p, n, circumradius, circumradius * cos(SP_SHAPE_PI / n));
+  return sp_star_distance(p, n, circumradius, circumradius * cos(SP_PI / n));
 }
 
 // Axis-aligned box (Quilez's sdBox).
@@ -134,7 +132,7 @@ SP_INLINE float sp_cross_distance(vec2 p, vec2 arm, float half_length, float hal
 
 // The sizes the shapes below share with sp_shape_extent. Areas in units of
 // p squared.
-#define SP_SHAPE_AREA (SP_SHAPE_AREA_SHARE * SP_SHAPE_PI)
+#define SP_SHAPE_AREA (SP_SHAPE_AREA_SHARE * SP_PI)
 // Ring: area 2*pi*mid*stroke.
 #define SP_RING_MID_RADIUS (SP_SHAPE_AREA_SHARE / (2.0f * SP_SHAPE_STROKE))
 // Plus: stout arms, area 8*L*w - 4*w^2.
@@ -189,7 +187,7 @@ SP_INLINE float sp_shape_distance(uint shape, vec2 p) {
     case SP_SHAPE_STAR: {
       // Five points near the rim; area 5*R*r*sin(36 degrees) sets the inner radius.
       float outer = SP_STAR_OUTER;
-      float inner = area / (5.0f * outer * sin(SP_SHAPE_PI / 5.0f));
+      float inner = area / (5.0f * outer * sin(SP_PI / 5.0f));
       return sp_star_distance(p, 5.0f, outer, inner);
     }
     case SP_SHAPE_HEXAGON:

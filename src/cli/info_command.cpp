@@ -9,6 +9,7 @@
 #include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
+#include "sim/step_plan.h"
 #include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
 #include "sp_types.h"
@@ -75,7 +76,7 @@ int run_info(const std::vector<std::string>& args) {
   const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.geometry->bvh);
   const double edges_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   std::size_t boundary = 0, convex = 0;
-  const float cos_max = std::cos(config.diffraction.edge_angle * 3.14159265f / 180.0f);
+  const float cos_max = diffraction_edge_cos_max(config.diffraction);
   for (const shader::TriangleEdges& e : edges)
     for (int i = 0; i < 3; ++i) {
       if (((e.exposed >> i) & 1u) == 0u) continue;

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include <glm/glm.hpp>
 
@@ -57,8 +58,7 @@ std::array<double, 3> multiply(const Matrix3& m, const std::array<double, 3>& v)
 
 std::array<double, 3> to_array(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
-constexpr double kPi = 3.14159265358979323846;
-double radians(double degrees) { return degrees * kPi / 180.0; }
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 // CIELAB's compressive function, with its linear segment near black.
 double lab_f(double t) {
@@ -69,7 +69,7 @@ double lab_f(double t) {
 // Hue angle in degrees, [0, 360); 0 where a and b are both 0 (Sharma eq. 7).
 double hue_degrees(double b, double a) {
   if (a == 0.0 && b == 0.0) return 0.0;
-  const double h = std::atan2(b, a) * 180.0 / kPi;
+  const double h = std::atan2(b, a) * 180.0 / std::numbers::pi;
   return h < 0.0 ? h + 360.0 : h;
 }
 

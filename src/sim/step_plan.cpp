@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <glm/geometric.hpp>
 
 namespace sp {
@@ -94,15 +95,18 @@ shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
   const DiffractionSettings& d = config.diffraction;
   if (d.enabled) {
     // Computed here once, so both backends read the same floats.
-    constexpr double kPi = 3.14159265358979323846;
     p.diffraction = 1u;
-    p.edge_cos_max = static_cast<float>(std::cos(double(d.edge_angle) * kPi / 180.0));
+    p.edge_cos_max = diffraction_edge_cos_max(d);
     p.diffraction_reach = diffraction_reach(d);
     // sigma(a) = 1 / (2 k a), k = 2 pi f / c: the width is c / (4 pi f).
-    p.diffraction_width = static_cast<float>(double(kSpeedOfSound) / (4.0 * kPi * double(d.frequency)));
+    p.diffraction_width = static_cast<float>(double(kSpeedOfSound) / (4.0 * std::numbers::pi * double(d.frequency)));
     p.diffraction_gain = d.gain;
   }
   return p;
+}
+
+float diffraction_edge_cos_max(const DiffractionSettings& diffraction) {
+  return static_cast<float>(std::cos(double(diffraction.edge_angle) * std::numbers::pi / 180.0));
 }
 
 std::vector<shader::LayerAcoustics> make_layer_table(const World& world) {

@@ -34,6 +34,10 @@ std::vector<std::uint32_t> split_budget(std::uint32_t budget, const std::vector<
 // The ray model's parameters for one step.
 shader::SimParams make_sim_params(const Config& config, std::uint64_t step);
 
+// cos of diffraction.edge_angle: an edge whose faces turn by at least the
+// angle has turn_cos <= this. One computation for the backends and `info`.
+float diffraction_edge_cos_max(const DiffractionSettings& diffraction);
+
 // Per layer id, the acoustics table the ray model reads.
 std::vector<shader::LayerAcoustics> make_layer_table(const World& world);
 
