@@ -99,8 +99,9 @@ struct Painting {
   std::unique_ptr<Visualizer> visualizer;
 };
 
-Painting paint(vk::Context& context, const Swapchain& swapchain, Session& session) {
-  World world = make_world(session.scene, session.config).value();
+// `world` is make_world(session.scene, session.config): at start-up the one
+// run_viewer checked, afterwards a fresh one (a World takes a BVH build).
+Painting paint(vk::Context& context, const Swapchain& swapchain, Session& session, World world) {
   Painting painting;
   painting.scene_pass = std::make_unique<draw::ScenePass>(context, draw::build_scene_mesh(world, true),
                                                           swapchain.format(), Swapchain::kDepthFormat);
@@ -143,7 +144,8 @@ void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_v
 // flight, and what is painted.
 class Viewer {
  public:
-  Viewer(const ViewerOptions& options, Window& window, Session session);
+  // `first_world`: make_world(session.scene, session.config), already made.
+  Viewer(const ViewerOptions& options, Window& window, Session session, World first_world);
   ~Viewer();
   void run();
   std::uint32_t validation_messages() const { return context_->validation_message_count(); }
@@ -188,7 +190,7 @@ class Viewer {
   std::uint64_t frame_ = 0;
 };
 
-Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
+Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, World first_world)
     : options_(options), window_(window), session_(std::move(session)) {
   vk::ContextSettings settings;
   settings.instance_extensions = Window::required_instance_extensions();
@@ -221,11 +223,10 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session)
     timestamp_ms_ = double(context_->properties().limits.timestampPeriod) * 1e-6;
   }
 
-  painting_ = paint(*context_, *swapchain_, session_);
-  World probe = make_world(session_.scene, session_.config).value();
   const VkExtent2D extent = swapchain_->extent();
   camera_ = FlyCamera::from(
-      draw::make_view_camera(session_.scene.camera, probe, options_.camera, extent.width, extent.height));
+      draw::make_view_camera(session_.scene.camera, first_world, options_.camera, extent.width, extent.height));
+  painting_ = paint(*context_, *swapchain_, session_, std::move(first_world));
   panel_state_.ray_budget = session_.config.ray_budget;
   panel_state_.diffraction = session_.config.diffraction.enabled;
   panel_state_.display = painting_.visualizer->display();
@@ -252,7 +253,7 @@ void Viewer::rebuild() {
   const DisplaySettings display = painting_.visualizer->display();
   painting_ = Painting{};
   session_.config.display = display;
-  painting_ = paint(*context_, *swapchain_, session_);
+  painting_ = paint(*context_, *swapchain_, session_, make_world(session_.scene, session_.config).value());
   rebuild_ = false;
 }
 
@@ -604,12 +605,14 @@ std::uint32_t run_viewer(const ViewerOptions& options) {
   if (!session.config.display.offscreen_arrows) session.config.display.offscreen_arrows = true;
   if (!session.config.listener_position && !session.scene.camera) session.config.listener_position = glm::vec3(0.0f);
   session.backend = options.backend;
-  make_world(session.scene, session.config).value();  // bad sources and the like fail before a window opens
+  // Bad sources and the like fail before a window opens; the World is the
+  // viewer's first.
+  World world = make_world(session.scene, session.config).value();
 
   Window window(options.width, options.height, "soundpaint view: " + options.scene_path);
   std::uint32_t messages = 0;
   {
-    Viewer viewer(options, window, std::move(session));
+    Viewer viewer(options, window, std::move(session), std::move(world));
     viewer.run();
     messages = viewer.validation_messages();
   }
