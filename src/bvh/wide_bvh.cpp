@@ -39,6 +39,9 @@ void wide_slots(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWi
   }
 }
 
+// Whether slot entry `slot` (from wide_slots) leads to another wide node.
+bool is_interior_slot(const Bvh& bvh, std::uint32_t slot) { return slot != SP_INVALID && bvh.nodes[slot].count == 0u; }
+
 std::uint32_t packets_of_leaf(const BvhNode& leaf) { return (leaf.count + kWideArity - 1u) / kWideArity; }
 
 // What the collapse of a binary subtree writes: its wide nodes and packets.
@@ -84,7 +87,7 @@ class Collapser {
     std::uint32_t slots[kWideArity];
     const std::uint32_t index = write_node(binary, level, slots);
     for (std::uint32_t s = 0; s < kWideArity; ++s) {
-      if (slots[s] != SP_INVALID && bvh_.nodes[slots[s]].count == 0u) {
+      if (is_interior_slot(bvh_, slots[s])) {
         wide_.nodes[index].slot[s].child = collapse(slots[s], level + 1u);
       }
     }
@@ -410,7 +413,7 @@ WideBvh build_wide_bvh(const Bvh& bvh, bool parallel) {
   // Sizing the subtrees first tells each one where it writes.
   std::uint32_t slots[kWideArity];
   wide_slots(bvh, 0u, slots);
-  auto interior = [&](std::uint32_t s) { return slots[s] != SP_INVALID && bvh.nodes[slots[s]].count == 0u; };
+  auto interior = [&](std::uint32_t s) { return is_interior_slot(bvh, slots[s]); };
   CollapseSize start[kWideArity] = {};
   CollapseSize total{1u, 0u};
   for (std::uint32_t s = 0; s < kWideArity; ++s)
