@@ -220,8 +220,10 @@ int run(const CommandLine& cli, const Options& options) {
     const Caster soundpaint = [&](const CastRay* r, std::size_t count, CastHit* out) {
       for (std::size_t i = 0; i < count; ++i) {
         const sp::HitInfo hit = sp::closest_hit(world.geometry->bvh, r[i].origin, r[i].dir, r[i].tmin, r[i].tmax);
-        out[i] = hit.triangle == SP_INVALID ? CastHit{}
-                                            : CastHit{hit.t, world.geometry->bvh.triangles[hit.triangle].scene_index};
+        // The leaf-order index, as the CPU backend uses it; mapping it to
+        // the scene's order would add a cache miss per ray that Embree's
+        // caster, returning its own primID, does not pay.
+        out[i] = hit.triangle == SP_INVALID ? CastHit{} : CastHit{hit.t, hit.triangle};
       }
     };
     std::vector<CastHit> reference;

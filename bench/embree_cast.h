@@ -28,7 +28,9 @@ inline constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
 
 struct CastHit {
   float t = 0.0f;
-  std::uint32_t triangle = kMiss;  // scene index of the triangle hit, or kMiss
+  // The caster's own index of the triangle hit (Embree: the scene's order;
+  // soundpaint: leaf order), or kMiss. Only hit or miss is compared.
+  std::uint32_t triangle = kMiss;
 };
 
 // Embree's version, or empty when built without it.
