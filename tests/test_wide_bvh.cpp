@@ -252,6 +252,16 @@ TEST(WideBvh, RandomSoupMatchesBinary) {
   }
 }
 
+// A tree large enough that the walk prefetches (kPrefetchTreeBytes).
+TEST(WideBvh, LargeTreesMatchBinary) {
+  Soup soup = make_random_soup(40000, 31);
+  sp::Bvh bvh = soup.build();
+  ASSERT_GT(bvh.wide->bytes(), sp::kPrefetchTreeBytes);
+  check_wide_invariants(bvh);
+  Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-12), vec3(12), 6000, 32), 33));
+  EXPECT_GT(a.hits, 3000u);
+}
+
 // Axis-aligned walls (node bounds planes coincide with faces), coincident
 // walls (exact ties between scene indices), T-junctions, rays that start on
 // surfaces or run inside a wall's plane with zero direction components.

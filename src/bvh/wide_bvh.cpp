@@ -326,9 +326,27 @@ inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, s
   }
 }
 
+// Starts loading what every slot of `node` leads to, hit or not, before its
+// boxes are tested. In a tree larger than the core's own caches a wide node
+// or packet is rarely there past the first levels, and the next address is
+// known only after the box test; fetching all four while the test runs
+// overlaps those misses with it and with each other. An unused slot
+// prefetches the root: harmless.
+inline void prefetch_slots(const WideNode& node, const WideNode* nodes, const TrianglePacket* packets) {
+  static_assert(sizeof(WideNode) <= 2 * 64 && sizeof(TrianglePacket) <= 3 * 64);
+  for (const WideSlot& slot : node.slot) {
+    // A packet is 160 bytes (three lines at most), a node 128 (two).
+    const char* p = slot.count == 0u ? reinterpret_cast<const char*>(nodes + slot.child)
+                                     : reinterpret_cast<const char*>(packets + slot.child);
+    prefetch(p);
+    prefetch(p + 64);
+    prefetch(p + 128);
+  }
+}
+
 // The traversal proper. Entering slots in the order of the binary walk (see
 // the file comment of wide_bvh.h) is what makes the answer identical to it.
-template <bool kParallel, class Collector>
+template <bool kParallel, bool kPrefetch, class Collector>
 void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Collector& best) {
   // A slot that waits, with the entry distance of its box.
   struct Entry {
@@ -344,6 +362,7 @@ void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, C
   for (;;) {
     if (item.count == 0u) {
       const WideNode& node = nodes[item.child];
+      if (kPrefetch) prefetch_slots(node, nodes, packets);
       Vec4 tnear;
       const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.limit(), tnear);
       if (hits != 0u) {
@@ -468,10 +487,13 @@ template <class Collector>
 void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax, Collector& collector) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   const WideRay ray = make_wide_ray(q);
+  const bool large = wide.bytes() > kPrefetchTreeBytes;
   if (q.parallel_axes != 0u) {
-    traverse<true>(wide, ray, q.parallel_axes, collector);
+    traverse<true, false>(wide, ray, q.parallel_axes, collector);
+  } else if (large) {
+    traverse<false, true>(wide, ray, 0u, collector);
   } else {
-    traverse<false>(wide, ray, 0u, collector);
+    traverse<false, false>(wide, ray, 0u, collector);
   }
 }
 

@@ -34,6 +34,7 @@
 // tests/test_wide_bvh.cpp compares the two walks on many rays.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -85,10 +86,19 @@ struct alignas(32) TrianglePacket {
 };
 static_assert(sizeof(TrianglePacket) == 160);
 
+// Walks of trees larger than this prefetch each node's children while its
+// boxes are tested (wide_bvh.cpp, prefetch_slots). On the 2-vCPU AMD EPYC of
+// bench/RESULTS.md (1 MiB L2 per core) prefetching made trees of 1-2 MiB
+// (10k-17k triangles) 3-7 % slower and those of 11 MiB and more up to 1.4x
+// faster.
+inline constexpr std::size_t kPrefetchTreeBytes = std::size_t{4} << 20;
+
 struct WideBvh {
   LargeArray<WideNode> nodes;  // nodes[0] is the root; children after their parent
   LargeArray<TrianglePacket> packets;
   std::uint32_t depth = 0;  // wide levels, root included; <= the binary depth
+
+  std::size_t bytes() const { return nodes.size() * sizeof(WideNode) + packets.size() * sizeof(TrianglePacket); }
 };
 
 // Collapses `bvh`; with `parallel`, the root's subtrees on threads of their
