@@ -200,9 +200,9 @@ struct HalfPlane {
     ray.origin = glm::vec3(-a, 0.0f, 1.0f);
     ray.dir = glm::vec3(0.0f, 0.0f, -1.0f);
     counters.layers.assign(world.layer_names.size(), {});
-    std::vector<shader::Indicator> out;
+    DefaultInitVector<shader::Indicator> out;
     trace_ray(context, ray, out, counters);
-    return out;
+    return {out.begin(), out.end()};
   }
 };
 

@@ -50,9 +50,11 @@ SP_INLINE float sp_active_reach(RayState r, SimParams p) {
 // a touch behind it (those of a solid touching the entry face) through W_max.
 SP_INLINE float sp_matter_tmin() { return -SP_CONTACT_TOLERANCE; }
 
-SP_INLINE Indicator sp_make_indicator(uint kind, RayState r, StepSource source, vec3 position, vec3 normal,
-                                      SimParams p) {
-  Indicator ind;
+// Writes every field of `ind` in place. (Not a returned struct: on the CPU the
+// caller's indicator is where it stays, and a whole-struct copy of fields just
+// stored one by one stalls on store-to-load forwarding.)
+SP_INLINE void sp_make_indicator(SP_OUT(Indicator) ind, uint kind, RayState r, StepSource source, vec3 position,
+                                 vec3 normal, SimParams p) {
   ind.position = position;
   ind.energy = r.energy;
   ind.normal = normal;
@@ -70,7 +72,6 @@ SP_INLINE Indicator sp_make_indicator(uint kind, RayState r, StepSource source, 
   ind.step = p.step;
   ind.ray_index = r.ray_index;
   ind.iteration = r.casts;
-  return ind;
 }
 
 SP_INLINE vec3 sp_offset_point(vec3 p, vec3 dir, float distance) {
@@ -113,7 +114,7 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
   vec3 position = sp_offset_point(r.origin, r.dir, found.t);
   vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal
                                               : tri.normal;  // towards the ray's side (a sheet's back is a front too)
-  ind = sp_make_indicator(SP_INDICATOR_HIT, r, source, position, normal, p);
+  sp_make_indicator(ind, SP_INDICATOR_HIT, r, source, position, normal, p);
   outcome |= SP_OUTCOME_INDICATOR;
   // Diffractions count as interactions: they key the random numbers and
   // max_bounces bounds them (without diffraction the sum is the paper's).
@@ -156,7 +157,7 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
       r.state = SP_RAY_DEAD;
       return outcome;
     }
-    sheet_exit = sp_make_indicator(SP_INDICATOR_EXIT, r, source, position, -normal, p);
+    sp_make_indicator(sheet_exit, SP_INDICATOR_EXIT, r, source, position, -normal, p);
     outcome |= SP_OUTCOME_SHEET_EXIT;
     r.origin = sp_offset_point(position, r.dir, SP_EPSILON);
   } else {
@@ -192,7 +193,7 @@ SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, CastResult found, BvhTr
   // Towards where it leaves to: the exit face's front, unless only a
   // disagreeing winding let the ray out.
   vec3 normal = sp_crossing(tri.normal, r.dir) == SP_CROSSING_ENTER ? -tri.normal : tri.normal;
-  ind = sp_make_indicator(SP_INDICATOR_EXIT, r, source, position, normal, p);
+  sp_make_indicator(ind, SP_INDICATOR_EXIT, r, source, position, normal, p);
   r.state = SP_RAY_ACTIVE;
   r.origin = sp_offset_point(position, r.dir, SP_EPSILON);
   return SP_OUTCOME_INDICATOR;

@@ -14,16 +14,16 @@
 #pragma once
 
 #include <cstddef>
-#include <cstring>
 #include <limits>
 #include <new>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+
+#include "core/default_init_allocator.h"
 
 namespace sp {
 
@@ -65,19 +65,10 @@ struct LargeArrayAllocator {
   // writes each element once, on two threads; zeroing first was a serial
   // pass over the whole array that cost more than the writing (1M
   // triangles: the gather took 37 ms on two threads against 21 on one).
-  // Write every element that resize() adds: builds with assertions fill
-  // them with 0xFF bytes first (NaN floats, SP_INVALID indices), so that an
-  // element left unwritten shows in the tests instead of reading as zero.
+  // Write every element that resize() adds (core/default_init_allocator.h).
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
-    if constexpr (sizeof...(Args) == 0) {
-#ifndef NDEBUG
-      if constexpr (std::is_trivially_default_constructible_v<U>) std::memset(static_cast<void*>(p), 0xFF, sizeof(U));
-#endif
-      ::new (static_cast<void*>(p)) U;
-    } else {
-      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
+    default_init_construct(p, std::forward<Args>(args)...);
   }
 
   // Leaves room to round up to a whole huge page without overflow.

@@ -30,7 +30,7 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   }
 
   pool_.parallel_for(plan.total_rays, kChunkRays, [&](std::size_t first, std::size_t last, unsigned worker) {
-    std::vector<shader::Indicator>& indicators = chunk_indicators_[first / kChunkRays];
+    DefaultInitVector<shader::Indicator>& indicators = chunk_indicators_[first / kChunkRays];
     std::size_t slot = 0;  // rays are grouped by source in ascending ray index
     for (std::size_t i = first; i < last; ++i) {
       while (i >= plan.sources[slot].first_ray + plan.sources[slot].ray_count) ++slot;

@@ -41,7 +41,7 @@ class CpuStepRunner {
   ThreadPool pool_;
   std::size_t layer_count_;
   std::vector<TraceCounters> worker_counters_;
-  std::vector<std::vector<shader::Indicator>> chunk_indicators_;
+  std::vector<DefaultInitVector<shader::Indicator>> chunk_indicators_;
 };
 
 }  // namespace sp

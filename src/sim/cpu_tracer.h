@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "core/default_init_allocator.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -43,7 +44,7 @@ struct TraceContext {
 };
 
 // Traces `ray` (already emitted) to its end, appending its indicators.
-void trace_ray(const TraceContext& context, shader::RayState ray, std::vector<shader::Indicator>& indicators,
+void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVector<shader::Indicator>& indicators,
                TraceCounters& counters);
 
 }  // namespace sp

@@ -43,9 +43,9 @@ struct SingleRay {
     ray.origin = origin;
     ray.dir = glm::normalize(dir);
     counters.layers.assign(world.layer_names.size(), {});
-    std::vector<shader::Indicator> out;
+    DefaultInitVector<shader::Indicator> out;
     trace_ray(context, ray, out, counters);
-    return out;
+    return {out.begin(), out.end()};
   }
   std::vector<shader::Indicator> trace(glm::vec3 origin, glm::vec3 dir) {
     TraceCounters counters;
