@@ -38,10 +38,22 @@ class CpuStepRunner {
  private:
   void merge_in_canonical_order(std::size_t chunks, std::vector<shader::Indicator>& out) const;
 
+  // What workers write on every cast sits on cache lines of its own: with
+  // two workers' counters, or two chunks' list headers, side by side, each
+  // write stalled on the line the other core had just taken (on 2 threads,
+  // perf put a third of trace_ray's time on the `casts` increment).
+  static constexpr std::size_t kCacheLine = 64;
+  struct alignas(kCacheLine) WorkerCounters {
+    TraceCounters counters;
+  };
+  struct alignas(kCacheLine) ChunkIndicators {
+    DefaultInitVector<shader::Indicator> list;
+  };
+
   ThreadPool pool_;
   std::size_t layer_count_;
-  std::vector<TraceCounters> worker_counters_;
-  std::vector<DefaultInitVector<shader::Indicator>> chunk_indicators_;
+  std::vector<WorkerCounters> worker_counters_;
+  std::vector<ChunkIndicators> chunk_indicators_;
 };
 
 }  // namespace sp
