@@ -23,6 +23,12 @@ constexpr float kBoxMargin = 1.0000004f;
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
 
+#if defined(_MSC_VER)
+#define SP_ALWAYS_INLINE __forceinline
+#else
+#define SP_ALWAYS_INLINE __attribute__((always_inline)) inline
+#endif
+
 // ---------------------------------------------------------------- collapse
 
 // The slots of the wide node that replaces binary interior node `binary`:
@@ -179,7 +185,11 @@ struct WideRay {
   Vec4 shear[3];
 };
 
-WideRay make_wide_ray(const shader::RayQuery& q) {
+// Always inlined into walk(), so that sp_make_query's fields reach it in
+// registers: called, it read them back from memory, 8 bytes at a time over
+// pairs of 4-byte stores that the core cannot forward, and the stall was 9 %
+// of a CPU step (perf, bench/RESULTS.md section 14).
+SP_ALWAYS_INLINE WideRay make_wide_ray(const shader::RayQuery& q) {
   WideRay r;
   for (int a = 0; a < 3; ++a) {
     r.origin[a] = splat(q.origin[a]);
