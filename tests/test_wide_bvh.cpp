@@ -12,9 +12,11 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -194,10 +196,39 @@ bool same_list(const sp::shader::HitList& a, const sp::shader::HitList& b) {
   return true;
 }
 
-// Every ray: wide == binary, triangle and t bit for bit; closest_hit (which
-// dispatches to the wide tree) says the same. The same for the nearest-hits
-// list of the matter query.
+// Selects a compiled walk (wide_bvh.h) for a scope, then puts back the one
+// that was in use.
+class WalkSelection {
+ public:
+  explicit WalkSelection(sp::WideWalk walk) : before_(sp::selected_wide_walk()) {
+    selected_ = sp::select_wide_walk(walk);
+  }
+  ~WalkSelection() { sp::select_wide_walk(before_); }
+  bool selected() const { return selected_; }
+
+ private:
+  sp::WideWalk before_;
+  bool selected_ = false;
+};
+
+// Every ray, with every compiled walk this CPU runs: wide == binary,
+// triangle and t bit for bit; closest_hit (which dispatches to the wide
+// tree) says the same. The same for the nearest-hits list of the matter
+// query. Returns the last walk's agreement (all walks must agree anyway).
+Agreement expect_same_as_binary_with(const sp::Bvh& bvh, const std::vector<Ray>& rays);
+
 Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
+  Agreement agreement;
+  for (const sp::WideWalk walk : {sp::WideWalk::Baseline, sp::WideWalk::Avx512}) {
+    const WalkSelection selection(walk);
+    if (!selection.selected()) continue;
+    SCOPED_TRACE(std::string("walk ") + sp::wide_walk_name(walk));
+    agreement = expect_same_as_binary_with(bvh, rays);
+  }
+  return agreement;
+}
+
+Agreement expect_same_as_binary_with(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
   Agreement agreement;
   std::size_t failures = 0;
   std::size_t list_failures = 0;
@@ -380,6 +411,23 @@ TEST(WideBvh, CoincidentTrianglesMatchBinary) {
 
 // Copies of a Bvh share the immutable wide tree; without one, closest_hit
 // walks the binary nodes and answers the same.
+// The baseline walk is always there; the process starts on the fastest one
+// the CPU runs; a walk the CPU cannot run is refused and changes nothing.
+TEST(WideBvh, WalkSelectionStartsOnTheFastestAvailable) {
+  const bool avx512 = sp::wide_walk_available(sp::WideWalk::Avx512);
+  std::printf("compiled walks this CPU runs: baseline%s\n", avx512 ? ", avx512" : "");
+  EXPECT_TRUE(sp::wide_walk_available(sp::WideWalk::Baseline));
+  EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+  {
+    const WalkSelection baseline(sp::WideWalk::Baseline);
+    EXPECT_TRUE(baseline.selected());
+    EXPECT_EQ(sp::selected_wide_walk(), sp::WideWalk::Baseline);
+    EXPECT_EQ(sp::select_wide_walk(sp::WideWalk::Avx512), avx512);
+    EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+  }
+  EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+}
+
 TEST(WideBvh, CopiesShareTheTreeAndNullFallsBack) {
   Soup soup = make_rooms(2, 2, 1, 2);
   const sp::Bvh bvh = soup.build();

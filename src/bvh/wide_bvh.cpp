@@ -6,6 +6,7 @@
 #include "bvh/wide_bvh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <future>
@@ -23,10 +24,25 @@ constexpr float kBoxMargin = 1.0000004f;
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
 
+// The walk is inlined whole into each entry point below, so that the
+// AVX-512 one compiles all of it for AVX-512.
 #if defined(_MSC_VER)
 #define SP_ALWAYS_INLINE __forceinline
 #else
 #define SP_ALWAYS_INLINE __attribute__((always_inline)) inline
+#endif
+
+// A second copy of the walk for x86-64 CPUs with AVX-512 (F, VL, BW, DQ)
+// and AVX2/BMI2, chosen at run time. It is the same source: the same SSE
+// operations, encoded with EVEX, where 32 vector registers hold the ray's
+// constants that spill from SSE's 16 (the walk waits on its own dependency
+// chain, and AVX2's 16 registers did not help: bench/RESULTS.md sections 13
+// and 14). Lane results are the same IEEE operations bit for bit: no FMA
+// is enabled here, and -ffp-contract=off forbids forming one. GCC and Clang
+// only; MSVC and the scalar build keep the baseline walk.
+#if defined(SP_SIMD_SSE2) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SP_WIDE_AVX512 1
+#define SP_TARGET_AVX512 __attribute__((target("avx2,bmi,bmi2,avx512f,avx512vl,avx512bw,avx512dq")))
 #endif
 
 // ---------------------------------------------------------------- collapse
@@ -213,12 +229,12 @@ SP_ALWAYS_INLINE WideRay make_wide_ray(const shader::RayQuery& q) {
   return r;
 }
 
-inline Vec4 plane(const WideNode& node, std::size_t offset) {
+SP_ALWAYS_INLINE Vec4 plane(const WideNode& node, std::size_t offset) {
   return *reinterpret_cast<const Vec4*>(reinterpret_cast<const char*>(node.bounds) + offset);
 }
 
 // Distances of the four slots' entry planes on axis `a`.
-inline Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) {
+SP_ALWAYS_INLINE Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) {
   return (plane(node, r.entry_plane[a]) - r.origin[a]) * r.inv_dir[a];
 }
 
@@ -231,8 +247,8 @@ inline Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) {
 // return it when the comparison is unordered, so the NaN bounds of an
 // unused slot reach tnear and tfar (see WideNode).
 template <bool kParallel>
-inline unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const WideNode& node, float tmax,
-                                Vec4& tnear) {
+SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const WideNode& node, float tmax,
+                                          Vec4& tnear) {
   Vec4 entry[3], exit[3];
   for (int a = 0; a < 3; ++a) {
     entry[a] = slab_entry(r, node, a);
@@ -256,7 +272,7 @@ inline unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const 
 // smaller of its children's on each axis: sp_intersect_box's tnear for it,
 // from the slots' entries. An unused slot 1 or 3 is the first operand of
 // vmin and loses to the NaN-free slot 0 or 2.
-inline std::uint32_t first_pair(const WideRay& r, const WideNode& node) {
+SP_ALWAYS_INLINE std::uint32_t first_pair(const WideRay& r, const WideNode& node) {
   Vec4 parent = r.tmin;
   for (int a = 0; a < 3; ++a) {
     const Vec4 e = slab_entry(r, node, a);
@@ -303,7 +319,8 @@ struct Nearest {
 // (tmin, limit] and the collector's rule. Every line mirrors the shared
 // function operation for operation, so each lane's t is bit-identical to it.
 template <class Collector>
-inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count, Collector& best) {
+SP_ALWAYS_INLINE void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count,
+                                        Collector& best) {
   const Vec4 zero = splat(0.0f);
   for (const TrianglePacket* p = packets; p != packets + count; ++p) {
     // a = v0 - origin, b = v1 - origin, c = v2 - origin, in the axes kx, ky, kz.
@@ -342,7 +359,7 @@ inline void intersect_packets(const WideRay& r, const TrianglePacket* packets, s
 // known only after the box test; fetching all four while the test runs
 // overlaps those misses with it and with each other. An unused slot
 // prefetches the root: harmless.
-inline void prefetch_slots(const WideNode& node, const WideNode* nodes, const TrianglePacket* packets) {
+SP_ALWAYS_INLINE void prefetch_slots(const WideNode& node, const WideNode* nodes, const TrianglePacket* packets) {
   static_assert(sizeof(WideNode) <= 2 * 64 && sizeof(TrianglePacket) <= 3 * 64);
   for (const WideSlot& slot : node.slot) {
     // A packet is 160 bytes (three lines at most), a node 128 (two).
@@ -357,7 +374,7 @@ inline void prefetch_slots(const WideNode& node, const WideNode* nodes, const Tr
 // The traversal proper. Entering slots in the order of the binary walk (see
 // the file comment of wide_bvh.h) is what makes the answer identical to it.
 template <bool kParallel, bool kPrefetch, class Collector>
-void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Collector& best) {
+SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Collector& best) {
   // A slot that waits, with the entry distance of its box.
   struct Entry {
     float t;
@@ -494,7 +511,8 @@ WideBvh build_wide_bvh(const Bvh& bvh, bool parallel) {
 namespace {
 
 template <class Collector>
-void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax, Collector& collector) {
+SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax,
+                           Collector& collector) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   const WideRay ray = make_wide_ray(q);
   const bool large = wide.bytes() > kPrefetchTreeBytes;
@@ -507,21 +525,84 @@ void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, floa
   }
 }
 
-}  // namespace
 
-HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+SP_ALWAYS_INLINE HitInfo closest_hit_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
+                                        float tmin, float tmax) {
   Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
   walk(wide, origin, dir, tmin, tmax, best);
   return best.hit;
 }
 
-shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
-                                  float tmax) {
+SP_ALWAYS_INLINE shader::HitList nearest_hits_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
+                                                 float tmin, float tmax) {
   Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
   nearest.list.count = 0u;
   nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
   walk(wide, origin, dir, tmin, tmax, nearest);
   return nearest.list;
+}
+
+#if defined(SP_WIDE_AVX512)
+SP_TARGET_AVX512 HitInfo closest_hit_avx512(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
+                                            float tmin, float tmax) {
+  return closest_hit_in(wide, bvh, origin, dir, tmin, tmax);
+}
+SP_TARGET_AVX512 shader::HitList nearest_hits_avx512(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin,
+                                                     glm::vec3 dir, float tmin, float tmax) {
+  return nearest_hits_in(wide, bvh, origin, dir, tmin, tmax);
+}
+#endif
+
+bool cpu_runs(WideWalk walk) {
+  switch (walk) {
+    case WideWalk::Baseline:
+      return true;
+    case WideWalk::Avx512:
+#if defined(SP_WIDE_AVX512)
+      __builtin_cpu_init();
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+             __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+#else
+      return false;
+#endif
+  }
+  return false;
+}
+
+// The walk in use: the fastest this CPU runs, until select_wide_walk.
+std::atomic<WideWalk>& selected() {
+  static std::atomic<WideWalk> walk{cpu_runs(WideWalk::Avx512) ? WideWalk::Avx512 : WideWalk::Baseline};
+  return walk;
+}
+
+}  // namespace
+
+bool wide_walk_available(WideWalk walk) { return cpu_runs(walk); }
+
+bool select_wide_walk(WideWalk walk) {
+  if (!cpu_runs(walk)) return false;
+  selected().store(walk, std::memory_order_relaxed);
+  return true;
+}
+
+WideWalk selected_wide_walk() { return selected().load(std::memory_order_relaxed); }
+
+const char* wide_walk_name(WideWalk walk) { return walk == WideWalk::Avx512 ? "avx512" : "baseline"; }
+
+HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+#if defined(SP_WIDE_AVX512)
+  if (selected_wide_walk() == WideWalk::Avx512) return closest_hit_avx512(wide, bvh, origin, dir, tmin, tmax);
+#endif
+  return closest_hit_in(wide, bvh, origin, dir, tmin, tmax);
+}
+
+shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
+                                  float tmax) {
+#if defined(SP_WIDE_AVX512)
+  if (selected_wide_walk() == WideWalk::Avx512) return nearest_hits_avx512(wide, bvh, origin, dir, tmin, tmax);
+#endif
+  return nearest_hits_in(wide, bvh, origin, dir, tmin, tmax);
 }
 
 }  // namespace sp

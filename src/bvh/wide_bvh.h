@@ -115,4 +115,21 @@ HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, 
 shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                                   float tmax);
 
+// The compiled copies of the walk above. Every one gives the same answer
+// bit for bit; tests/test_wide_bvh.cpp checks each this CPU runs.
+enum class WideWalk {
+  Baseline,  // SSE2 on x86-64, NEON on Arm, scalar lanes elsewhere
+  Avx512,    // x86-64 with AVX-512 F/VL/BW/DQ and AVX2/BMI2, GCC and Clang builds
+};
+
+// Whether this build has `walk` and this CPU runs it.
+bool wide_walk_available(WideWalk walk);
+// The walk wide_closest_hit and wide_nearest_hits use: at first the fastest
+// available. select_wide_walk changes it for the whole process (for tests
+// and benchmarks; not while other threads cast) and returns false, changing
+// nothing, when `walk` is not available.
+WideWalk selected_wide_walk();
+bool select_wide_walk(WideWalk walk);
+const char* wide_walk_name(WideWalk walk);
+
 }  // namespace sp
