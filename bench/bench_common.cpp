@@ -1,5 +1,7 @@
 #include "bench_common.h"
 
+#include "bvh/wide_bvh.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +19,15 @@
 #include "io/output.h"
 
 namespace spbench {
+
+void select_cpu_walk(const CommandLine& cli, const std::string& name) {
+  if (name == "best") return;
+  if (name != "baseline" && name != "avx512") cli.fail("--cpu-walk must be best, baseline or avx512, not " + name);
+  const sp::WideWalk walk = name == "avx512" ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline;
+  if (!sp::select_wide_walk(walk)) cli.fail("--cpu-walk " + name + ": this build or this CPU does not have it");
+}
+
+const char* cpu_walk_name() { return sp::wide_walk_name(sp::selected_wide_walk()); }
 
 // ---------------------------------------------------------------------------
 // Command line

@@ -62,6 +62,14 @@ unsigned resolve_threads(unsigned requested);
 // The CPU's model name (from /proc/cpuinfo) and thread count.
 std::string host_description();
 
+// --cpu-walk: which compiled copy of soundpaint's CPU traversal runs
+// (src/bvh/wide_bvh.h): "best" (the default: the fastest this CPU runs),
+// "baseline" or "avx512". Fails, naming the problem, on an unknown name or a
+// walk this build or CPU lacks.
+void select_cpu_walk(const CommandLine& cli, const std::string& name);
+// The walk in use, by name.
+const char* cpu_walk_name();
+
 // ---------------------------------------------------------------------------
 // Scenes
 

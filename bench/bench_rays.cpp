@@ -48,14 +48,15 @@ using spbench::Json;
 constexpr const char* kUsage =
     "usage: bench_rays [--scenes SPEC,...] [--rays N] [--budget B] [--runs R] [--build-runs R] [--threads T]\n"
     "                  [--backends cpu,gpu|none] [--sim-steps N] [--sim-max-seconds S] [--pattern paper|burst|scene]\n"
-    "                  [--json OUT.json]\n"
+    "                  [--cpu-walk best|baseline|avx512] [--json OUT.json]\n"
     "  --scenes      glTF files and gen:N generated levels of about N triangles\n"
     "                (default: scenes/level.gltf,gen:10000,gen:100000,gen:1000000)\n"
     "  --rays        emitted rays cast per pass (default 500000), gathered from steps at --budget rays (default 2500)\n"
     "  --runs        timed passes per caster after one warm-up pass; medians (default 5)\n"
     "  --build-runs  BVH builds per builder after one warm-up build; medians (default 3)\n"
     "  --backends    simulation backends stepped on each scene for casts/s (default cpu,gpu; none skips)\n"
-    "  --sim-steps   frames measured per backend (default 60, after 10 of warm-up)\n";
+    "  --sim-steps   frames measured per backend (default 60, after 10 of warm-up)\n"
+    "  --cpu-walk    soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n";
 
 struct Options {
   std::vector<std::string> scenes = {SP_DEFAULT_SCENE, "gen:10000", "gen:100000", "gen:1000000"};
@@ -68,6 +69,7 @@ struct Options {
   spbench::LoopSettings loop{10, 60, 0.0};
   spbench::Pattern pattern = spbench::Pattern::Paper;
   std::string json;
+  std::string cpu_walk = "best";
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -84,6 +86,7 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--sim-steps") o.loop.steps = cli.to_uint(value, flag);
     else if (flag == "--sim-max-seconds") o.loop.max_seconds = cli.to_double(value, flag);
     else if (flag == "--json") o.json = value;
+    else if (flag == "--cpu-walk") o.cpu_walk = value;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else return false;
     return true;
@@ -169,7 +172,9 @@ int run(const CommandLine& cli, const Options& options) {
   const unsigned threads = spbench::resolve_threads(options.threads);
   sp::ThreadPool pool(threads);
   const auto embree = spbench::embree_version();
+  spbench::select_cpu_walk(cli, options.cpu_walk);
   std::printf("host: %s\n", spbench::host_description().c_str());
+  std::printf("soundpaint CPU walk: %s\n", spbench::cpu_walk_name());
   std::printf("casting on %u threads; %u emitted rays per pass (budget %u per step), median of %u passes\n", threads,
               options.rays, options.budget, options.runs);
   if (embree) std::printf("Embree %s\n", embree->c_str());
@@ -324,6 +329,7 @@ int run(const CommandLine& cli, const Options& options) {
   if (!options.json.empty()) {
     Json document = {{"benchmark", "bench_rays"},
                      {"host", spbench::host_description()},
+                     {"cpu_walk", spbench::cpu_walk_name()},
                      {"embree", embree ? Json(*embree) : Json(nullptr)},
                      {"settings",
                       {{"threads", threads},

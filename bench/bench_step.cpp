@@ -34,7 +34,7 @@ constexpr const char* kUsage =
     "usage: bench_step [--scene FILE|gen:TRIANGLES] [--backends cpu,gpu] [--budgets A,B,...]\n"
     "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
     "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json] [--diffraction 0|1]\n"
-    "                  [--cpu-traversal soundpaint|embree]\n"
+    "                  [--cpu-traversal soundpaint|embree] [--cpu-walk best|baseline|avx512]\n"
     "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
     "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
     "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
@@ -45,7 +45,8 @@ constexpr const char* kUsage =
     "  --validate-steps  frames each backend runs for the agreement check (default 10; 0 skips it)\n"
     "  --diffraction  1: diffraction on, its other keys at their defaults (default 0)\n"
     "  --cpu-traversal  the config's cpu_traversal for the CPU backend (default soundpaint;\n"
-    "                 embree needs a build with -DSOUNDPAINT_EMBREE=ON)\n";
+    "                 embree needs a build with -DSOUNDPAINT_EMBREE=ON)\n"
+    "  --cpu-walk     soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
@@ -60,6 +61,7 @@ struct Options {
   std::string json;
   bool diffraction = false;
   sp::CpuTraversal cpu_traversal = sp::CpuTraversal::Soundpaint;
+  std::string cpu_walk = "best";
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -78,6 +80,7 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--json") o.json = value;
     else if (flag == "--diffraction") o.diffraction = cli.to_uint(value, flag) != 0;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
+    else if (flag == "--cpu-walk") o.cpu_walk = value;
     else if (flag == "--cpu-traversal") {
       if (value != "soundpaint" && value != "embree") cli.fail("--cpu-traversal must be soundpaint or embree");
       o.cpu_traversal = value == "embree" ? sp::CpuTraversal::Embree : sp::CpuTraversal::Soundpaint;
@@ -113,8 +116,9 @@ int run(const CommandLine& cli, const Options& options) {
               options.scene.c_str(), scene.triangle_count(), scene.sources.size(),
               spbench::pattern_name(options.pattern), options.bounces, threads);
   std::printf("host: %s\n", spbench::host_description().c_str());
-  std::printf("diffraction: %s; CPU traversal: %s\n", options.diffraction ? "on" : "off",
-              options.cpu_traversal == sp::CpuTraversal::Embree ? "embree" : "soundpaint");
+  spbench::select_cpu_walk(cli, options.cpu_walk);
+  std::printf("diffraction: %s; CPU traversal: %s (walk: %s)\n", options.diffraction ? "on" : "off",
+              options.cpu_traversal == sp::CpuTraversal::Embree ? "embree" : "soundpaint", spbench::cpu_walk_name());
   config.ray_budget = 1;
   auto probe_world = sp::make_world(scene, config);
   if (!probe_world) {
@@ -169,6 +173,7 @@ int run(const CommandLine& cli, const Options& options) {
         {"benchmark", "bench_step"},
         {"scene", {{"spec", options.scene}, {"triangles", scene.triangle_count()}, {"sources", scene.sources.size()}}},
         {"host", spbench::host_description()},
+        {"cpu_walk", spbench::cpu_walk_name()},
         {"settings",
          {{"pattern", spbench::pattern_name(options.pattern)},
           {"bounces", options.bounces},
