@@ -41,7 +41,8 @@ class CpuStepRunner {
   // What workers write on every cast sits on cache lines of its own: with
   // two workers' counters, or two chunks' list headers, side by side, each
   // write stalled on the line the other core had just taken (on 2 threads,
-  // perf put a third of trace_ray's time on the `casts` increment).
+  // perf put 30 % of the step in trace_ray, half of it on the `casts`
+  // increment; bench/RESULTS.md section 14).
   static constexpr std::size_t kCacheLine = 64;
   struct alignas(kCacheLine) WorkerCounters {
     TraceCounters counters;
