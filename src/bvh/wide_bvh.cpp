@@ -525,7 +525,8 @@ SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir,
   }
 }
 
-
+// The two queries' bodies, inlined into the baseline entry points (the
+// public functions below) and into the AVX-512 ones.
 SP_ALWAYS_INLINE HitInfo closest_hit_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                         float tmin, float tmax) {
   Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
