@@ -211,24 +211,8 @@ class WalkSelection {
   bool selected_ = false;
 };
 
-// Every ray, with every compiled walk this CPU runs: wide == binary,
-// triangle and t bit for bit; closest_hit (which dispatches to the wide
-// tree) says the same. The same for the nearest-hits list of the matter
-// query. Returns the last walk's agreement (all walks must agree anyway).
-Agreement expect_same_as_binary_with(const sp::Bvh& bvh, const std::vector<Ray>& rays);
-
-Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
-  Agreement agreement;
-  for (const sp::WideWalk walk : {sp::WideWalk::Baseline, sp::WideWalk::Avx512}) {
-    const WalkSelection selection(walk);
-    if (!selection.selected()) continue;
-    SCOPED_TRACE(std::string("walk ") + sp::wide_walk_name(walk));
-    agreement = expect_same_as_binary_with(bvh, rays);
-  }
-  return agreement;
-}
-
-Agreement expect_same_as_binary_with(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
+// expect_same_as_binary (below) for the walk selected now.
+Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
   Agreement agreement;
   std::size_t failures = 0;
   std::size_t list_failures = 0;
@@ -263,12 +247,28 @@ Agreement expect_same_as_binary_with(const sp::Bvh& bvh, const std::vector<Ray>&
   return agreement;
 }
 
+// Every ray, with every compiled walk this CPU runs: wide == binary,
+// triangle and t bit for bit; closest_hit (which dispatches to the wide
+// tree) says the same. The same for the nearest-hits list of the matter
+// query. Returns the last walk's agreement (all walks must agree anyway).
+Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
+  Agreement agreement;
+  for (const sp::WideWalk walk : {sp::WideWalk::Baseline, sp::WideWalk::Avx512}) {
+    const WalkSelection selection(walk);
+    if (!selection.selected()) continue;
+    SCOPED_TRACE(std::string("walk ") + sp::wide_walk_name(walk));
+    agreement = expect_selected_walk_same_as_binary(bvh, rays);
+  }
+  return agreement;
+}
+
 std::vector<Ray> concat(std::vector<Ray> a, const std::vector<Ray>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
 
-// The scenes below cast 144k rays in all, each with both walks.
+// The scenes below cast 144k rays in all, each with the binary walk and
+// every wide walk this CPU runs.
 
 TEST(WideBvh, RandomSoupMatchesBinary) {
   Soup soup = make_random_soup(3000, 21);
@@ -409,25 +409,26 @@ TEST(WideBvh, CoincidentTrianglesMatchBinary) {
   EXPECT_EQ(bvh.triangles[h.triangle].scene_index, 0u);
 }
 
-// Copies of a Bvh share the immutable wide tree; without one, closest_hit
-// walks the binary nodes and answers the same.
 // The baseline walk is always there; the process starts on the fastest one
 // the CPU runs; a walk the CPU cannot run is refused and changes nothing.
 TEST(WideBvh, WalkSelectionStartsOnTheFastestAvailable) {
   const bool avx512 = sp::wide_walk_available(sp::WideWalk::Avx512);
+  const sp::WideWalk fastest = avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline;
   std::printf("compiled walks this CPU runs: baseline%s\n", avx512 ? ", avx512" : "");
   EXPECT_TRUE(sp::wide_walk_available(sp::WideWalk::Baseline));
-  EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+  EXPECT_EQ(sp::selected_wide_walk(), fastest);
   {
     const WalkSelection baseline(sp::WideWalk::Baseline);
     EXPECT_TRUE(baseline.selected());
     EXPECT_EQ(sp::selected_wide_walk(), sp::WideWalk::Baseline);
     EXPECT_EQ(sp::select_wide_walk(sp::WideWalk::Avx512), avx512);
-    EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+    EXPECT_EQ(sp::selected_wide_walk(), fastest);
   }
-  EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+  EXPECT_EQ(sp::selected_wide_walk(), fastest);
 }
 
+// Copies of a Bvh share the immutable wide tree; without one, closest_hit
+// walks the binary nodes and answers the same.
 TEST(WideBvh, CopiesShareTheTreeAndNullFallsBack) {
   Soup soup = make_rooms(2, 2, 1, 2);
   const sp::Bvh bvh = soup.build();
