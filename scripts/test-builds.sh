@@ -2,7 +2,7 @@
 # The test suite built by other compilers and configurations (issue 14,
 # item 7), each in a build folder of its own, each followed by ctest:
 #
-#   bash scripts/test-builds.sh [clang] [assert]     (default: both)
+#   bash scripts/test-builds.sh [clang] [assert] [scalar]   (default: all three)
 #
 #   clang   clang++ with -Werror (build-clang/): clang's warnings are not
 #           GCC's (e.g. -Wconversion includes -Wsign-conversion there);
@@ -11,8 +11,12 @@
 #           every assert() runs, and _GLIBCXX_ASSERTIONS, so the standard
 #           library checks indices, front() and back() of empty containers,
 #           and the like.
+#   scalar  -DSOUNDPAINT_SIMD=scalar (build-scalar/): the CPU BVH's vectors
+#           as four plain lanes, as on a compiler or CPU without SSE2 or
+#           NEON (issue 15). Only the suites that run the CPU BVH, the ray
+#           model and the CPU/GPU parity: the rest does not touch simd4.h.
 #
-# Left out of both, to keep .ci/run within its hour on two cores: the
+# Left out of all, to keep .ci/run within its hour on two cores: the
 # benchmarks (scripts/test.sh's build runs their smoke tests) and the tests
 # labelled "consumer" (packaging, not the compiler: they build soundpaint
 # again, several times over). The examples stay in: the tests run the example
@@ -23,7 +27,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(clang assert)
+[ ${#stages[@]} -gt 0 ] || stages=(clang assert scalar)
 jobs="$(nproc)"
 prefix="${BUILD_PREFIX:-build-}"
 
@@ -55,8 +59,22 @@ for stage in "${stages[@]}"; do
         -DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 \
         -DCMAKE_CXX_FLAGS=-D_GLIBCXX_ASSERTIONS
       ;;
+    scalar)
+      start=$SECONDS
+      dir="${prefix}scalar"
+      echo "== scalar SIMD ($dir/)"
+      suites=(test_bvh test_wide_bvh test_bvh_refit test_large_array test_ray_model test_matter test_diffraction
+              test_simulation test_gpu_parity test_backends)
+      cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DSOUNDPAINT_WERROR=ON -DSOUNDPAINT_BUILD_BENCH=OFF \
+        -DSOUNDPAINT_BUILD_EXAMPLES=OFF -DSOUNDPAINT_SIMD=scalar >/dev/null
+      cmake --build "$dir" -j"$jobs" --target "${suites[@]}"
+      for t in "${suites[@]}"; do
+        "$dir/tests/$t" --gtest_brief=1
+      done
+      echo "== scalar SIMD: ${#suites[@]} suites passed, $((SECONDS - start)) s"
+      ;;
     *)
-      echo "test-builds.sh: unknown stage '$stage' (clang, assert)" >&2
+      echo "test-builds.sh: unknown stage '$stage' (clang, assert, scalar)" >&2
       exit 2
       ;;
   esac
