@@ -105,10 +105,12 @@ TEST_F(Allocations, InstancesDoNotDecodeTheirMeshAgain) {
 }
 
 // A 6 x 3 x 5 m room; 100,000 rays a step make 3,125 chunks of work, more
-// than the calling thread can finish before the workers wake.
+// than the calling thread can finish before the workers wake. A ring of
+// 200,000 admits 3,334 indicators a step (ring_quota), 267 kB.
 sp::World room_world() {
   sp::Config config;
   config.ray_budget = 100000;
+  config.max_indicators = 200000;
   config.listener_position = glm::vec3(0.0f, 1.5f, 0.0f);
   return sp::make_world(sp::test::closed_room(), config).value();
 }
@@ -150,9 +152,10 @@ TEST_F(Allocations, WorkerOutOfMemoryBecomesAnErrorAndStopsTheSimulator) {
   expect_step_failure_stops_the_simulator([] { g_fail_off_main_thread = true; });
 }
 
-// The step's merged indicator list (100,000 rays: megabytes) on the caller.
+// The list of the step's indicators the ring admits (room_world: 267 kB),
+// made on the caller.
 TEST_F(Allocations, CallerOutOfMemoryBecomesAnErrorAndStopsTheSimulator) {
-  expect_step_failure_stops_the_simulator([] { g_fail_from_size = std::size_t{1} << 20; });
+  expect_step_failure_stops_the_simulator([] { g_fail_from_size = std::size_t{128} << 10; });
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // determinism. Expectations are derived by hand from SPEC section 1. The
 // physics shared with the GPU backend lives in test_backends.cpp.
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 #include <tuple>
@@ -9,8 +10,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "sim/cpu_step_runner.h"
 #include "sim/indicator_ring.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
 #include "sp_random.h"
 #include "support/run_steps.h"
@@ -251,6 +254,45 @@ TEST(Simulation, RingAdmitsAShareOfSpotsOfEqualWorthRatherThanNone) {
   auto again = admit(step, 20, 1.0f);
   ASSERT_EQ(again.size(), admitted.size());
   for (std::size_t i = 0; i < admitted.size(); ++i) EXPECT_EQ(again[i].ray_index, admitted[i].ray_index);
+}
+
+// The CPU step leaves its indicators in per-chunk lists and merges them
+// only on request; the ring's admission works on the chunks directly. Both
+// must give what one merged list gives: canonical (iteration, ray) order,
+// and admit() of that list, at every quota.
+TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
+  Config config = quiet_config();
+  config.ray_budget = 1000;  // 32 chunks of 32 rays
+  const World world = make_world(closed_room(), config).value();
+  const StepPlan plan = plan_step(world, 0, world.listener, std::vector<PlayWindow>(world.sources.size()));
+  ASSERT_EQ(plan.total_rays, 1000u);
+  CpuStepRunner runner(2, world.layer_names.size());
+  CpuStepOutput out;
+  runner.run(world.geometry->bvh, make_layer_table(world), plan, make_sim_params(config, 0), out);
+
+  const std::vector<shader::Indicator> all = out.canonical();
+  ASSERT_EQ(all.size(), out.indicator_count());
+  ASSERT_GT(all.size(), 1000u) << "every ray leaves one indicator at least, most several";
+  std::set<std::uint32_t> iterations;
+  for (std::size_t i = 1; i < all.size(); ++i) {
+    iterations.insert(all[i].iteration);
+    const auto before = std::make_tuple(all[i - 1].iteration, all[i - 1].ray_index);
+    const auto after = std::make_tuple(all[i].iteration, all[i].ray_index);
+    ASSERT_LE(before, after) << "indicator " << i << " out of canonical order";
+  }
+  EXPECT_GT(iterations.size(), 2u) << "rays bounce: later iterations interleave the chunks";
+
+  auto same = [](const shader::Indicator& a, const shader::Indicator& b) {
+    return std::memcmp(&a, &b, sizeof(a)) == 0;
+  };
+  const auto count = static_cast<std::uint32_t>(all.size());
+  for (std::uint32_t quota : {1u, 7u, 334u, count / 2u, count - 1u, count, count + 9u}) {
+    const std::vector<shader::Indicator> expected = admit(all, quota, 1.0f);
+    const std::vector<shader::Indicator> admitted = out.admitted(quota, 1.0f);
+    ASSERT_EQ(admitted.size(), expected.size()) << "quota " << quota;
+    for (std::size_t i = 0; i < admitted.size(); ++i)
+      ASSERT_TRUE(same(admitted[i], expected[i])) << "quota " << quota << ", admitted indicator " << i;
+  }
 }
 
 TEST(Simulation, RingQuotaTurnsTheRingOverOncePerLifetime) {

@@ -67,9 +67,9 @@ class CpuVisualizer final : public VisualizerBase {
       }
       if (finished != nullptr) {
         totals_.casts += finished->counters.casts;
-        totals_.indicators += finished->indicators.size();
+        totals_.indicators += finished->indicator_count();
         totals_.rays_emitted += running_rays_;
-        upload_step(cmd, admit(finished->indicators, ring_quota_, inverse_indicator_size_));
+        upload_step(cmd, finished->admitted(ring_quota_, inverse_indicator_size_));
         worker_.release();
         steps_run_ = running_step_ + 1;
         handed = 1;

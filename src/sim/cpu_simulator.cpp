@@ -57,7 +57,7 @@ class CpuSimulator final : public Simulator {
 
   Result<std::vector<Indicator>> last_step_indicators() override {
     if (failure_) return *failure_;  // the failed step's list may be partial
-    return to_public(last_.indicators);
+    return to_public(last_.canonical());
   }
 
   Result<std::vector<Indicator>> live_indicators() override {
@@ -77,14 +77,14 @@ class CpuSimulator final : public Simulator {
       if (embree_) embree_->update(changes);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
       runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_, embree_.get());
-      ring_.push(admit(last_.indicators, ring_quota_, inverse_indicator_size_));
+      ring_.push(last_.admitted(ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
       totals_.steps += 1;
       totals_.casts += last_.counters.casts;
       totals_.max_casts_per_step = std::max(totals_.max_casts_per_step, last_.counters.casts);
       totals_.rays_emitted += plan_.total_rays;
-      totals_.indicators += last_.indicators.size();
+      totals_.indicators += last_.indicator_count();
       steps_run_ += 1;
       return true;
     });

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sim/indicator_ring.h"
 #include "sp_ray_model.h"
 
 namespace sp {
@@ -27,15 +28,16 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
                         const shader::SimParams& params, CpuStepOutput& out, const EmbreeTraversal* embree) {
   TraceContext context{&bvh, layers, plan.sources, params, embree};
   const std::size_t chunks = (plan.total_rays + kChunkRays - 1) / kChunkRays;
-  if (chunk_indicators_.size() < chunks) chunk_indicators_.resize(chunks);
-  for (std::size_t c = 0; c < chunks; ++c) chunk_indicators_[c].list.clear();
+  if (out.chunks_.size() < chunks) out.chunks_.resize(chunks);
+  out.chunk_count_ = chunks;
+  for (std::size_t c = 0; c < chunks; ++c) out.chunks_[c].list.clear();
   for (WorkerCounters& worker : worker_counters_) {
     worker.counters.casts = 0;
     std::fill(worker.counters.layers.begin(), worker.counters.layers.end(), LayerCounters{});
   }
 
   pool_.parallel_for(plan.total_rays, kChunkRays, [&](std::size_t first, std::size_t last, unsigned worker) {
-    DefaultInitVector<shader::Indicator>& indicators = chunk_indicators_[first / kChunkRays].list;
+    DefaultInitVector<shader::Indicator>& indicators = out.chunks_[first / kChunkRays].list;
     std::size_t slot = 0;  // rays are grouped by source in ascending ray index
     for (std::size_t i = first; i < last; ++i) {
       while (i >= plan.sources[slot].first_ray + plan.sources[slot].ray_count) ++slot;
@@ -45,7 +47,6 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
     }
   });
 
-  merge_in_canonical_order(chunks, out.indicators);
   out.counters.casts = 0;
   out.counters.layers.assign(layer_count_, LayerCounters{});
   for (const WorkerCounters& worker : worker_counters_) {
@@ -54,24 +55,38 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   }
 }
 
+std::size_t CpuStepOutput::indicator_count() const {
+  std::size_t count = 0;
+  for (std::size_t c = 0; c < chunk_count_; ++c) count += chunks_[c].list.size();
+  return count;
+}
+
 // Chunks hold rays in ascending order and each ray's indicators in ascending
 // iteration; a stable counting sort by iteration then yields (iteration, ray)
-// order, whatever thread ran which chunk.
-void CpuStepRunner::merge_in_canonical_order(std::size_t chunks, std::vector<shader::Indicator>& out) const {
-  std::size_t total = 0;
-  std::uint32_t max_iteration = 0;
-  for (std::size_t c = 0; c < chunks; ++c) {
-    total += chunk_indicators_[c].list.size();
-    for (const shader::Indicator& ind : chunk_indicators_[c].list)
-      max_iteration = std::max(max_iteration, ind.iteration);
-  }
-  std::vector<std::size_t> offsets(max_iteration + 2, 0);
-  for (std::size_t c = 0; c < chunks; ++c)
-    for (const shader::Indicator& ind : chunk_indicators_[c].list) offsets[ind.iteration + 1] += 1;
-  for (std::size_t k = 1; k < offsets.size(); ++k) offsets[k] += offsets[k - 1];
-  out.resize(total);
-  for (std::size_t c = 0; c < chunks; ++c)
-    for (const shader::Indicator& ind : chunk_indicators_[c].list) out[offsets[ind.iteration]++] = ind;
+// order, whatever thread ran which chunk. `keep` runs once per indicator.
+template <class Keep>
+std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const {
+  std::vector<const shader::Indicator*> kept;
+  std::vector<std::size_t> offsets;  // per iteration + 1: how many kept, then where the next goes
+  for_each([&](const shader::Indicator& ind) {
+    if (!keep(ind)) return;
+    kept.push_back(&ind);
+    if (offsets.size() < ind.iteration + 2u) offsets.resize(ind.iteration + 2u, 0u);
+    offsets[ind.iteration + 1u] += 1u;
+  });
+  for (std::size_t k = 1; k < offsets.size(); ++k) offsets[k] += offsets[k - 1u];
+  std::vector<shader::Indicator> out(kept.size());
+  for (const shader::Indicator* ind : kept) out[offsets[ind->iteration]++] = *ind;
+  return out;
+}
+
+std::vector<shader::Indicator> CpuStepOutput::canonical() const {
+  return canonical_where([](const shader::Indicator&) { return true; });
+}
+
+std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, float inverse_indicator_size) const {
+  const AdmissionPlan plan([&](auto&& visit) { for_each(visit); }, indicator_count(), quota, inverse_indicator_size);
+  return canonical_where([&](const shader::Indicator& ind) { return plan.admits(ind); });
 }
 
 }  // namespace sp

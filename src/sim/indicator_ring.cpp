@@ -1,10 +1,7 @@
 #include "sim/indicator_ring.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-
-#include "sp_admission.h"
 
 namespace sp {
 
@@ -23,22 +20,15 @@ float inverse_indicator_size(const Config& config) {
 std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota,
                                      float inverse_indicator_size) {
   if (step.size() <= quota) return {step.begin(), step.end()};
-  // The GPU's admit.comp, phase by phase, over one buffer of the same shape.
-  std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer{};
-  std::uint32_t* histogram = buffer.data();
-  for (const shader::Indicator& ind : step) histogram[shader::sp_admission_bin(ind, inverse_indicator_size)] += 1;
-  shader::sp_plan_admission(histogram, quota);
-  std::fill_n(histogram, SP_ADMISSION_BINS, 0u);
-  for (const shader::Indicator& ind : step)
-    if (shader::sp_in_tiebreak_bin(histogram, shader::sp_admission_bin(ind, inverse_indicator_size)))
-      histogram[shader::sp_admission_tiebreak(ind)] += 1;
-  shader::sp_plan_tiebreak(histogram, SP_ADMISSION_CLASSES);
+  const AdmissionPlan plan(
+      [&](auto&& visit) {
+        for (const shader::Indicator& ind : step) visit(ind);
+      },
+      step.size(), quota, inverse_indicator_size);
   std::vector<shader::Indicator> admitted;
   admitted.reserve(quota);
   for (const shader::Indicator& ind : step)
-    if (shader::sp_admitted(histogram, shader::sp_admission_bin(ind, inverse_indicator_size),
-                            shader::sp_admission_tiebreak(ind)))
-      admitted.push_back(ind);
+    if (plan.admits(ind)) admitted.push_back(ind);
   return admitted;
 }
 

@@ -5,11 +5,15 @@
 // overwritten.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "soundpaint/simulation.h"
+#include "sp_admission.h"
 #include "sp_types.h"
 
 namespace sp {
@@ -26,6 +30,44 @@ std::uint32_t ring_quota(const Config& config);
 // 1 / indicator_size, or 0 when indicator_size is 0 (every spot is then
 // invisible and equally informative).
 float inverse_indicator_size(const Config& config);
+
+// Which of a step's indicators the ring admits: the GPU's admit.comp, phase
+// by phase. Each indicator's fate follows from histograms over the whole
+// step and from the indicator alone, so the step's indicators may be
+// visited in any order: those of the CPU backend's chunks, unmerged.
+class AdmissionPlan {
+ public:
+  // `for_each(f)` calls f(const shader::Indicator&) once for each of the
+  // step's `count` indicators, in any order; it is called twice at most.
+  template <class ForEach>
+  AdmissionPlan(ForEach&& for_each, std::size_t count, std::uint32_t quota, float inverse_indicator_size)
+      : inverse_size_(inverse_indicator_size), all_(count <= quota) {
+    if (all_) return;
+    std::uint32_t* histogram = buffer_.data();
+    for_each([&](const shader::Indicator& ind) { histogram[shader::sp_admission_bin(ind, inverse_size_)] += 1; });
+    shader::sp_plan_admission(histogram, quota);
+    std::fill_n(histogram, SP_ADMISSION_BINS, 0u);
+    for_each([&](const shader::Indicator& ind) {
+      if (shader::sp_in_tiebreak_bin(histogram, shader::sp_admission_bin(ind, inverse_size_)))
+        histogram[shader::sp_admission_tiebreak(ind)] += 1;
+    });
+    shader::sp_plan_tiebreak(histogram, SP_ADMISSION_CLASSES);
+  }
+
+  // Whether the ring admits `ind`, one of the step's indicators. Its
+  // tie-break bin, a hash, matters only in its class's overflowing bin.
+  bool admits(const shader::Indicator& ind) const {
+    if (all_) return true;
+    const std::uint32_t bin = shader::sp_admission_bin(ind, inverse_size_);
+    const bool tie = shader::sp_in_tiebreak_bin(buffer_.data(), bin);
+    return shader::sp_admitted(buffer_.data(), bin, tie ? shader::sp_admission_tiebreak(ind) : 0u);
+  }
+
+ private:
+  std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer_{};  // histogram, then the plan
+  float inverse_size_;
+  bool all_;  // the whole step fits in the quota
+};
 
 // The indicators of `step` (in canonical order) that the ring admits, in
 // that order: those whose admission bin is at or above the threshold that
