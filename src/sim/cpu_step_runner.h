@@ -25,9 +25,10 @@ inline constexpr std::size_t kCacheLine = 64;
 // A step's indicators as the workers left them: in chunks of consecutive
 // rays, each chunk's rays in ascending order and each ray's indicators in
 // ascending iteration. They are put in canonical order (iteration, then ray
-// index) only for whoever asks: the ring admits a few hundred of a step's
-// thousands, and merging all of them on every step was ~0.09 ms of serial
-// work in a 1.6 ms step (bench/RESULTS.md section 16).
+// index) only for whoever asks: the ring admits tens or hundreds of a
+// step's thousands (67 of 8,800 on the paper's workload), and merging all
+// of them on every step was ~0.09 ms of serial work in a 1.6 ms step
+// (bench/RESULTS.md sections 14 and 16).
 class CpuStepOutput {
  public:
   TraceCounters counters;  // summed over the workers
