@@ -273,7 +273,7 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
   const std::vector<shader::Indicator> all = out.canonical();
   ASSERT_EQ(all.size(), out.indicator_count());
   ASSERT_GT(all.size(), 1000u) << "every ray leaves one indicator at least, most several";
-  std::set<std::uint32_t> iterations;
+  std::set<std::uint32_t> iterations = {all[0].iteration};
   for (std::size_t i = 1; i < all.size(); ++i) {
     iterations.insert(all[i].iteration);
     const auto before = std::make_tuple(all[i - 1].iteration, all[i - 1].ray_index);

@@ -19,14 +19,13 @@ float inverse_indicator_size(const Config& config) {
 
 std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota,
                                      float inverse_indicator_size) {
-  if (step.size() <= quota) return {step.begin(), step.end()};
   const AdmissionPlan plan(
       [&](auto&& visit) {
         for (const shader::Indicator& ind : step) visit(ind);
       },
       step.size(), quota, inverse_indicator_size);
   std::vector<shader::Indicator> admitted;
-  admitted.reserve(quota);
+  admitted.reserve(std::min<std::size_t>(quota, step.size()));
   for (const shader::Indicator& ind : step)
     if (plan.admits(ind)) admitted.push_back(ind);
   return admitted;
