@@ -10,24 +10,25 @@
 // of input indices) is partitioned in place, so every node owns a contiguous
 // range and a leaf's range is directly its slice of Bvh::triangles. Children
 // are appended as a pair, which gives the adjacency the traversal relies on
-// without a separate flattening pass. Scratch memory is allocated once per
-// build; nodes of at most kSmallNode triangles, the large majority, take an
-// exact sweep instead of bins. Threads: the root's passes over all triangles
-// (binning, partition, child bounds) run as two halves on two threads, the
-// subtrees near the root on threads of their own, and the big arrays sit on
-// huge pages (large_array.h), whose first-touch faults otherwise cost more
-// than the build in a virtual machine.
+// without a separate flattening pass; each leaf writes its triangles into
+// Bvh::triangles as it is made, so there is no gather pass after the build
+// either. Scratch memory is allocated once per build; nodes of at most
+// kSmallNode triangles, the large majority, take an exact sweep instead of
+// bins. Threads (build_workers.h, started once per build): the root's passes
+// over all triangles (binning, partition, child bounds) run as two halves,
+// the subtrees near the root as tasks of their own, and the big arrays sit
+// on huge pages (large_array.h), whose first-touch faults otherwise cost
+// more than the build in a virtual machine.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <future>
-#include <system_error>
 #include <thread>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "bvh/build_workers.h"
 #include "bvh/bvh_geometry.h"
 #include "bvh/wide_bvh.h"
 #include "bvh/bvh.h"
@@ -50,37 +51,26 @@ constexpr std::uint32_t kParallelMin = 16384;
 // benchmark VM, doing so at 30k triangles made the build 3x slower (4.7 ->
 // 15 ms; bench/RESULTS.md section 12), while at 252k and 1M it pays.
 constexpr std::uint32_t kConcurrentPassMin = 131072;
+// Subtrees are handed out down to level 9 at most (Builder::spawn_levels_):
+// 256 of them.
+constexpr unsigned kMaxThreads = 256;
 
-// Runs `a` on another thread and `b` on this one when `concurrent` (and a
-// thread can be started), else both here; returns when both are done.
-template <class A, class B>
-void run_both(bool concurrent, A&& a, B&& b) {
-  std::future<void> other;
-  if (concurrent) {
-    try {
-      other = std::async(std::launch::async, [&a] { a(); });
-    } catch (const std::system_error&) {
-      // no thread to be had: `a` runs here below
-    }
-  }
-  // If b throws (bad_alloc), the future's destructor still waits for a.
-  b();
-  if (other.valid()) {
-    other.get();
-  } else {
-    a();
-  }
-}
-
-// Runs f(begin, end) over [0, count): split in two halves, one on another
-// thread, when `parallel`, else in one call. For loops whose iterations
-// write disjoint elements only.
+// Runs f(begin, end) over [0, count): split in two halves, one offered to
+// another thread, when `parallel`, else in one call. For loops whose
+// iterations write disjoint elements only.
 template <class F>
-void for_halves(bool parallel, std::uint32_t count, F&& f) {
+void for_halves(BuildWorkers& workers, bool parallel, std::uint32_t count, F&& f) {
   if (!parallel) return f(0u, count);
   const std::uint32_t mid = count / 2u;
-  run_both(
-      true, [&f, mid] { f(0u, mid); }, [&f, mid, count] { f(mid, count); });
+  workers.run_both([&f, mid] { f(0u, mid); }, [&f, mid, count] { f(mid, count); });
+}
+
+// Runs `a` and `b`, offering `a` to another thread when `concurrent`.
+template <class A, class B>
+void run_both(BuildWorkers& workers, bool concurrent, A&& a, B&& b) {
+  if (concurrent) return workers.run_both(a, b);
+  a();
+  b();
 }
 
 // One triangle's bounds. The centroid used for splitting is the bounds
@@ -149,11 +139,31 @@ struct Split {
   float cost = 0.0f;           // A_L * N_L + A_R * N_R, not yet divided by A_parent
 };
 
+// Writes each leaf's triangles into Bvh::triangles as the leaf is made, on
+// whichever thread makes it, while its indices are still in cache.
+struct LeafWriter {
+  std::span<const glm::vec3> vertices;
+  std::span<const std::uint32_t> layers;
+  std::span<const std::uint32_t> solids;
+  BvhTriangle* out;
+
+  void write(std::uint32_t first, std::uint32_t count, const std::uint32_t* sources) const {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t source = sources[i];
+      const std::uint32_t solid = source < solids.size() ? solids[source] : source;
+      out[first + i] = make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source, solid);
+    }
+  }
+};
+
 class Builder {
  public:
-  Builder(std::span<const glm::vec3> vertices, std::uint32_t count, const BvhBuildSettings& settings, Bvh& bvh)
-      : nodes_(&bvh.nodes) {
-    unsigned threads = settings.threads != 0u ? settings.threads : std::thread::hardware_concurrency();
+  // `workers` runs the build's forks; its size sets how far down subtrees
+  // are offered to other threads.
+  Builder(std::span<const glm::vec3> vertices, std::uint32_t count, const BvhBuildSettings& settings,
+          BuildWorkers& workers, const LeafWriter& leaves, Bvh& bvh)
+      : nodes_(&bvh.nodes), workers_(&workers), leaves_(&leaves) {
+    const unsigned threads = workers.size();
     // Levels (root = 1) whose nodes may build their right subtree on another
     // thread: enough subtrees for ~2 per thread, so an uneven split still
     // keeps every core busy. Where the work runs never changes the output.
@@ -166,7 +176,7 @@ class Builder {
 
     records_.resize(count);
     indices_.resize(count);
-    for_halves(parallel(count), count, [&](std::uint32_t first, std::uint32_t last) {
+    for_halves(workers, parallel(count), count, [&](std::uint32_t first, std::uint32_t last) {
       for (std::uint32_t i = first; i < last; ++i) {
         const glm::vec3* v = &vertices[3u * std::size_t{i}];
         // Bounds of the vertices make_bvh_triangle stores: a degenerate
@@ -194,8 +204,6 @@ class Builder {
     subdivide(0, 0, count, 1, centroids);
   }
 
-  // The input index of each leaf-order triangle.
-  const LargeArray<std::uint32_t>& leaf_order() const { return indices_; }
   std::uint32_t depth() const { return depth_; }
   // Whether a pass over `count` triangles is worth splitting across threads.
   bool parallel(std::uint32_t count) const { return spawn_levels_ > 0u && count >= kParallelMin; }
@@ -211,6 +219,8 @@ class Builder {
   // serial build would append them.
   Builder(const Builder& parent, LargeArray<BvhNode>& nodes)
       : nodes_(&nodes),
+        workers_(parent.workers_),
+        leaves_(parent.leaves_),
         bins_(parent.bins_),
         max_leaf_size_(parent.max_leaf_size_),
         max_depth_(parent.max_depth_),
@@ -228,29 +238,19 @@ class Builder {
   }
 
   // Builds the subtree of (*nodes_)[right] (already appended, with its
-  // bounds) on another thread while this one builds the left sibling's, then
-  // splices it in: exactly the nodes, in exactly the order, the serial build
-  // appends after the left subtree. Returns false, having done nothing, if
-  // no thread could be started.
-  bool subdivide_pair_in_parallel(std::uint32_t left, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
+  // bounds), offered to another thread, while this one builds the left
+  // sibling's, then splices it in: exactly the nodes, in exactly the order,
+  // the serial build appends after the left subtree.
+  void subdivide_pair_in_parallel(std::uint32_t left, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
                                   std::uint32_t level, const Box& left_centroids, const Box& right_centroids) {
     const std::uint32_t right = left + 1u;
     LargeArray<BvhNode> sub;
     sub.reserve(2u * std::size_t{end - middle} - 1u);
     sub.push_back((*nodes_)[right]);
     Builder worker(*this, sub);
-    std::future<void> done;
-    try {
-      done = std::async(std::launch::async, [&worker, middle, end, level, &right_centroids] {
-        worker.subdivide(0, middle, end, level, right_centroids);
-      });
-    } catch (const std::system_error&) {
-      return false;
-    }
-    // If this side throws (bad_alloc), the future's destructor still waits
-    // for the worker before `sub` and `worker` go away.
-    subdivide(left, begin, middle, level, left_centroids);
-    done.get();
+    workers_->run_both(
+        [&worker, middle, end, level, &right_centroids] { worker.subdivide(0, middle, end, level, right_centroids); },
+        [&] { subdivide(left, begin, middle, level, left_centroids); });
 
     depth_ = std::max(depth_, worker.depth_);
     // Local index i > 0 becomes offset + i; leaves keep their triangle
@@ -261,7 +261,6 @@ class Builder {
     }
     (*nodes_)[right] = sub[0];
     nodes_->insert(nodes_->end(), sub.begin() + 1, sub.end());
-    return true;
   }
   static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
 
@@ -325,9 +324,8 @@ class Builder {
     // carrying them through the partition with branch-free selects.
     Box left, right, left_centroids, right_centroids;
     if (concurrent) {
-      run_both(
-          true, [&] { measure(middle, end, right, right_centroids); },
-          [&] { measure(begin, middle, left, left_centroids); });
+      workers_->run_both([&] { measure(middle, end, right, right_centroids); },
+                         [&] { measure(begin, middle, left, left_centroids); });
     } else {
       measure(begin, middle, left, left_centroids);
       measure(middle, end, right, right_centroids);
@@ -338,9 +336,8 @@ class Builder {
     (*nodes_)[node].count = 0u;
     nodes_->push_back(make_node(left));
     nodes_->push_back(make_node(right));
-    if (level <= spawn_levels_ && count >= kParallelMin &&
-        subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, left_centroids, right_centroids)) {
-      return;
+    if (level <= spawn_levels_ && count >= kParallelMin) {
+      return subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, left_centroids, right_centroids);
     }
     subdivide(children, begin, middle, level + 1u, left_centroids);
     subdivide(children + 1u, middle, end, level + 1u, right_centroids);
@@ -349,6 +346,7 @@ class Builder {
   void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
     (*nodes_)[node].left_or_first = begin;
     (*nodes_)[node].count = count;
+    leaves_->write(begin, count, indices_ptr_ + begin);
   }
 
   // Exact SAH for a small node: on each axis, sort by centroid (insertion
@@ -413,9 +411,8 @@ class Builder {
     const std::uint32_t bins = binning.bins;
     if (concurrent) {
       const std::uint32_t mid = begin + (end - begin) / 2u;
-      run_both(
-          true, [&] { bin_range(mid, end, binning, other_half_); },
-          [&] { bin_range(begin, mid, binning, bin_table_); });
+      workers_->run_both([&] { bin_range(mid, end, binning, other_half_); },
+                         [&] { bin_range(begin, mid, binning, bin_table_); });
       bin_table_.merge(other_half_, bins);
     } else {
       bin_range(begin, end, binning, bin_table_);
@@ -481,7 +478,7 @@ class Builder {
     const std::uint32_t mid = begin + (end - begin) / 2u;
     std::uint32_t first_right = 0, second_right = 0;
     run_both(
-        concurrent, [&] { second_right = partition_range(mid, end, binning, split); },
+        *workers_, concurrent, [&] { second_right = partition_range(mid, end, binning, split); },
         [&] { first_right = partition_range(begin, mid, binning, split); });
     // [begin, first_right) left, [first_right, mid) right, [mid,
     // second_right) left, [second_right, end) right: swap the shorter of the
@@ -513,6 +510,8 @@ class Builder {
   }
 
   LargeArray<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
+  BuildWorkers* workers_;
+  const LeafWriter* leaves_;
   std::uint32_t depth_ = 0;
   std::uint32_t bins_ = 16;
   std::uint32_t max_leaf_size_ = 4;
@@ -540,33 +539,20 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   Bvh bvh;
   if (count == 0u) return bvh;
 
-  Builder builder(vertices, count, settings, bvh);
+  // Threads only for a build that forks (Builder::parallel), and no more
+  // than it has subtrees to hand out.
+  const unsigned threads = settings.threads != 0u ? settings.threads : std::thread::hardware_concurrency();
+  BuildWorkers workers(count >= kParallelMin ? std::clamp(threads, 1u, kMaxThreads) : 1u);
+  // resize() leaves the elements to be written by the build's leaves
+  // (large_array.h).
+  bvh.triangles.resize(count);
+  const LeafWriter leaves{vertices, layers, solids, bvh.triangles.data()};
+  Builder builder(vertices, count, settings, workers, leaves, bvh);
   builder.build();
   bvh.depth = builder.depth();
-
-  const LargeArray<std::uint32_t>& order = builder.leaf_order();
-  // A gather in random order: prefetching a few triangles ahead hides most
-  // of the cache misses.
-  constexpr std::uint32_t kPrefetch = 16;
-  // Written in place, in two halves on two threads for a large scene;
-  // resize() leaves the elements to be written here (large_array.h).
-  bvh.triangles.resize(count);
-  BvhTriangle* out = bvh.triangles.data();
-  for_halves(builder.parallel(count), count, [&](std::uint32_t first, std::uint32_t last) {
-    for (std::uint32_t i = first; i < last; ++i) {
-      if (i + kPrefetch < last) {
-        const glm::vec3* ahead = &vertices[3u * std::size_t{order[i + kPrefetch]}];
-        prefetch(ahead);
-        prefetch(ahead + 2);
-      }
-      const std::uint32_t source = order[i];
-      const std::uint32_t solid = source < solids.size() ? solids[source] : source;
-      out[i] = make_bvh_triangle(&vertices[3u * std::size_t{source}], layers[source], source, solid);
-    }
-  });
   // The CPU backend's 4-wide copy (wide_bvh.h): a sizing walk, then the
   // collapse, ~0.3 ms of the ~2.5 ms build of scenes/level.gltf.
-  bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.concurrent_pass(count)));
+  bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.concurrent_pass(count) ? &workers : nullptr));
   bvh.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return bvh;
 }

@@ -9,10 +9,9 @@
 #include <atomic>
 #include <bit>
 #include <cassert>
-#include <future>
-#include <system_error>
 #include <limits>
 
+#include "bvh/build_workers.h"
 #include "sp_traverse.h"
 
 namespace sp {
@@ -443,7 +442,7 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
 
 }  // namespace
 
-WideBvh build_wide_bvh(const Bvh& bvh, bool parallel) {
+WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
   assert(!bvh.nodes.empty());
   WideBvh wide;
   if (bvh.nodes[0].count > 0u) {
@@ -478,33 +477,24 @@ WideBvh build_wide_bvh(const Bvh& bvh, bool parallel) {
   root.write_node(0u, 1u, slots);
   wide.depth = root.depth();
   // The subtrees write disjoint parts of the arrays, so they may run on
-  // other threads; the last one runs here.
+  // other threads.
   std::uint32_t subtree_depth[kWideArity] = {};
-  std::future<void> others[kWideArity];
-  std::uint32_t last_interior = 0;
   for (std::uint32_t s = 0; s < kWideArity; ++s)
-    if (interior(s)) last_interior = s;
-  for (std::uint32_t s = 0; s < kWideArity; ++s) {
-    if (!interior(s)) continue;
-    wide.nodes[0].slot[s].child = start[s].nodes;
-    auto collapse_subtree = [&bvh, &wide, &slots, &start, &subtree_depth, s] {
-      Collapser collapser(bvh, wide, start[s]);
-      collapser.collapse(slots[s], 2u);
-      subtree_depth[s] = collapser.depth();
-    };
-    if (parallel && s != last_interior) {
-      try {
-        others[s] = std::async(std::launch::async, collapse_subtree);
-        continue;
-      } catch (const std::system_error&) {  // no thread to be had: collapse it here
-      }
-    }
-    collapse_subtree();
-  }
-  for (std::uint32_t s = 0; s < kWideArity; ++s) {
-    if (others[s].valid()) others[s].get();
-    wide.depth = std::max(wide.depth, subtree_depth[s]);
-  }
+    if (interior(s)) wide.nodes[0].slot[s].child = start[s].nodes;
+  auto collapse_subtree = [&](std::uint32_t s) {
+    if (!interior(s)) return;
+    Collapser collapser(bvh, wide, start[s]);
+    collapser.collapse(slots[s], 2u);
+    subtree_depth[s] = collapser.depth();
+  };
+  BuildWorkers serial(1u);
+  BuildWorkers& forks = workers != nullptr ? *workers : serial;
+  static_assert(kWideArity == 4u);
+  auto collapse_pair = [&](std::uint32_t first) {
+    forks.run_both([&] { collapse_subtree(first + 1u); }, [&] { collapse_subtree(first); });
+  };
+  forks.run_both([&] { collapse_pair(2u); }, [&] { collapse_pair(0u); });
+  for (std::uint32_t s = 0; s < kWideArity; ++s) wide.depth = std::max(wide.depth, subtree_depth[s]);
   return wide;
 }
 

@@ -101,11 +101,14 @@ struct WideBvh {
   std::size_t bytes() const { return nodes.size() * sizeof(WideNode) + packets.size() * sizeof(TrianglePacket); }
 };
 
-// Collapses `bvh`; with `parallel`, the root's subtrees on threads of their
-// own (the result is the same either way). Precondition: bvh.nodes is not empty, and every interior
-// node's box is exactly the union of its children's, as build_bvh makes it
-// (the traversal derives a parent's entry distance from its children's).
-WideBvh build_wide_bvh(const Bvh& bvh, bool parallel = false);
+class BuildWorkers;
+
+// Collapses `bvh`; given `workers`, the root's subtrees are offered to its
+// threads (the result is the same either way). Precondition: bvh.nodes is
+// not empty, and every interior node's box is exactly the union of its
+// children's, as build_bvh makes it (the traversal derives a parent's entry
+// distance from its children's).
+WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers = nullptr);
 
 // sp_closest_hit's answer for `bvh`, from `wide` = build_wide_bvh(bvh).
 HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);

@@ -1,0 +1,91 @@
+#include "bvh/build_workers.h"
+
+#include <algorithm>
+#include <system_error>
+
+namespace sp {
+
+BuildWorkers::BuildWorkers(unsigned threads) {
+  for (unsigned i = 1; i < threads; ++i) {
+    try {
+      threads_.emplace_back([this] { thread_loop(); });
+    } catch (const std::system_error&) {
+      break;  // fewer threads: run_both still runs everything
+    }
+  }
+}
+
+BuildWorkers::~BuildWorkers() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  changed_.notify_all();
+  for (std::thread& t : threads_) t.join();
+}
+
+void BuildWorkers::offer(Task& task) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(&task);
+  }
+  changed_.notify_one();
+}
+
+void BuildWorkers::execute(Task& task) {
+  try {
+    task.run(task.body);
+  } catch (...) {
+    task.failure = std::current_exception();
+  }
+  {
+    std::lock_guard lock(mutex_);
+    task.done = true;
+  }
+  changed_.notify_all();
+}
+
+void BuildWorkers::finish(Task& task) {
+  std::unique_lock lock(mutex_);
+  if (const auto queued = std::find(queue_.begin(), queue_.end(), &task); queued != queue_.end()) {
+    queue_.erase(queued);
+    lock.unlock();
+    // Nobody took it: run it here, as a serial build would. Its exception
+    // is kept in the task like any other's.
+    try {
+      task.run(task.body);
+    } catch (...) {
+      task.failure = std::current_exception();
+    }
+    return;
+  }
+  while (!task.done) {
+    if (!queue_.empty()) {
+      // Help rather than idle: the newest task is the smallest piece of
+      // the nesting, the one most likely done before `task` is.
+      Task* other = queue_.back();
+      queue_.pop_back();
+      lock.unlock();
+      execute(*other);
+      lock.lock();
+      continue;
+    }
+    changed_.wait(lock);
+  }
+}
+
+void BuildWorkers::thread_loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+    if (stopping_) return;
+    // The oldest task is the largest: the nearest the root.
+    Task* task = queue_.front();
+    queue_.pop_front();
+    lock.unlock();
+    execute(*task);
+    lock.lock();
+  }
+}
+
+}  // namespace sp
