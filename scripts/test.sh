@@ -9,7 +9,7 @@ bash scripts/install-deps.sh
 
 echo "== sanitizers (ASan + UBSan, optimised build in build-asan/)"
 sanitized_tests=(test_scene test_config test_bvh test_wide_bvh test_bvh_refit test_ray_model test_simulation test_sound_scene test_capi
-                 test_scene_confinement test_scene_limits test_config_limits test_thread_pool test_memory_estimate
+                 test_scene_confinement test_scene_limits test_config_limits test_thread_pool test_build_workers test_memory_estimate
                  test_allocations test_output_path test_capi_untrusted)
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOUNDPAINT_SANITIZE=ON -DSOUNDPAINT_WERROR=ON \
   -DSOUNDPAINT_BUILD_BENCH=OFF >/dev/null

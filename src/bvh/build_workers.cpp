@@ -1,16 +1,19 @@
 #include "bvh/build_workers.h"
 
 #include <algorithm>
-#include <system_error>
 
 namespace sp {
 
 BuildWorkers::BuildWorkers(unsigned threads) {
+  if (threads <= 1u) return;
+  // Reserved first, so that no growth can throw while threads run: a
+  // joinable std::thread destroyed by an unwinding vector terminates.
+  threads_.reserve(threads - 1u);
   for (unsigned i = 1; i < threads; ++i) {
     try {
       threads_.emplace_back([this] { thread_loop(); });
-    } catch (const std::system_error&) {
-      break;  // fewer threads: run_both still runs everything
+    } catch (...) {  // std::system_error, or std::bad_alloc for the thread's state
+      break;         // fewer threads: run_both still runs everything
     }
   }
 }
