@@ -323,13 +323,9 @@ class Builder {
     // One pass per child for bounds and centroid bounds: cheaper than
     // carrying them through the partition with branch-free selects.
     Box left, right, left_centroids, right_centroids;
-    if (concurrent) {
-      workers_->run_both([&] { measure(middle, end, right, right_centroids); },
-                         [&] { measure(begin, middle, left, left_centroids); });
-    } else {
-      measure(begin, middle, left, left_centroids);
-      measure(middle, end, right, right_centroids);
-    }
+    run_both(
+        *workers_, concurrent, [&] { measure(middle, end, right, right_centroids); },
+        [&] { measure(begin, middle, left, left_centroids); });
 
     const auto children = static_cast<std::uint32_t>(nodes_->size());
     (*nodes_)[node].left_or_first = children;
