@@ -13,7 +13,7 @@ layout(location = 1) flat out vec4 out_color;  // rgb, opacity
 layout(location = 2) flat out uint out_shape;
 
 const vec2 kCorners[SP_INDICATOR_QUAD_VERTICES] =
-    vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, -1.0), vec2(1.0, 1.0), vec2(-1.0, 1.0));
+    vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0));
 // The arrow's extent in its frame: the shape at the origin, the head ahead of it.
 const vec2 kLow = vec2(-1.35, -1.35);
 const vec2 kHigh = vec2(2.35, 1.35);

@@ -240,6 +240,9 @@ TEST(CapiDrawOptions, InitGivesTheLibraryDefaults) {
   EXPECT_EQ(c.area, cpp.area);
   EXPECT_EQ(c.viewport_width, cpp.viewport_width);
   EXPECT_EQ(c.viewport_height, cpp.viewport_height);
+  EXPECT_EQ(c.viewport_x, cpp.viewport_x);
+  EXPECT_EQ(c.viewport_y, cpp.viewport_y);
+  EXPECT_EQ(c.viewport_x, 0u);
   EXPECT_EQ(c.scene_depth, cpp.scene_depth);
   EXPECT_EQ(c.scene_depth, -1);
   sp_draw_options_init(nullptr);
@@ -256,9 +259,21 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
   EXPECT_EQ(cpp.viewport_height, 120u);
   options.viewport_width = 160;
   options.viewport_height = 120;
+  options.viewport_x = 4;  // the area's own offset may be repeated
+  options.viewport_y = 8;
   options.scene_depth = 3;
   cpp = capi::draw_options_from(options, "fn");
   EXPECT_EQ(cpp.scene_depth, 3);
+  EXPECT_EQ(cpp.viewport_x, 4u);
+  EXPECT_EQ(cpp.viewport_y, 8u);
+  sp_draw_options split;  // no area: the host's viewport starts where it says
+  sp_draw_options_init(&split);
+  split.viewport_width = 160;
+  split.viewport_height = 240;
+  split.viewport_x = 160;
+  cpp = capi::draw_options_from(split, "fn");
+  EXPECT_EQ(cpp.viewport_x, 160u);
+  EXPECT_EQ(cpp.viewport_y, 0u);
 
   const VkRect2D empty{{0, 0}, {0, 16}};
   const struct {
@@ -273,6 +288,11 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
          o.area = &area;
          o.viewport_width = 100;
          o.viewport_height = 100;
+       }},
+      {"options->viewport_x",
+       [&](auto& o) {
+         o.area = &area;
+         o.viewport_x = 5;
        }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = -2; }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = std::numeric_limits<std::int32_t>::min(); }},
@@ -358,11 +378,19 @@ class CapiDisplay : public test::GpuTest {
     projection_[1][1] *= -1.0f;  // Vulkan's clip-space y points down
   }
 
+  // What a test's host records besides: into the scene's rendering, and
+  // just before the indicators are drawn.
+  struct HostSteps {
+    std::function<void(VkCommandBuffer)> in_scene;
+    std::function<void(VkCommandBuffer)> before_draw;
+  };
+
   // One frame: `dt` seconds of simulation (0: none, but the display
   // settings still apply), the host's rendering cleared to black, then the
   // indicators drawn with `options` (the viewport's size by default) over a
   // read-only depth when `overlays`.
-  draw::RgbaImage frame(double dt, const sp_draw_options* options = nullptr, bool overlays = false) {
+  draw::RgbaImage frame(double dt, const sp_draw_options* options = nullptr, bool overlays = false,
+                        const HostSteps& host = {}) {
     sp_draw_options sized;
     sp_draw_options_init(&sized);
     sized.viewport_width = kWidth;
@@ -371,7 +399,9 @@ class CapiDisplay : public test::GpuTest {
     EXPECT_EQ(sp_visualizer_record_simulation(vis_, cmd, dt, nullptr), SP_OK) << last_error();
     const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     target_->begin(cmd, clear);
+    if (host.in_scene) host.in_scene(cmd);
     if (overlays) target_->begin_overlays(cmd);
+    if (host.before_draw) host.before_draw(cmd);
     EXPECT_EQ(sp_visualizer_record_draw_ex(vis_, cmd, glm::value_ptr(view_), glm::value_ptr(projection_),
                                            options != nullptr ? options : &sized),
               SP_OK)
@@ -483,6 +513,62 @@ TEST_F(CapiDisplay, SceneDepthClipsSpotsToTheSurfacesInIt) {
   EXPECT_EQ(sp_visualizer_record_draw_ex(vis_, cmd, glm::value_ptr(view_), glm::value_ptr(projection_), &options),
             SP_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(last_error().find("scene_depth"), std::string::npos) << last_error();
+}
+
+// Split screen: the indicators drawn into the right half only, whose depth
+// holds the quad's plane (the left half's is cleared to the far plane, as
+// if a view of nothing). A spot shows only if the scene shows its centre,
+// looked up in the depth at the viewport's own origin: from the area's
+// offset, or from viewport_x when the host set the viewport itself. Taken
+// from (0, 0) instead, every centre would land on the empty left half.
+TEST_F(CapiDisplay, SceneDepthIsReadAtTheViewportsOrigin) {
+  const VkImageView depth = target_->depth_view();
+  ASSERT_EQ(sp_visualizer_set_scene_depth(vis_, &depth, 1), SP_OK) << last_error();
+  simulate();
+  const glm::vec4 on_quad = projection_ * view_ * glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+  const float quad_depth = on_quad.z / on_quad.w;  // the quad faces the camera: one depth everywhere
+  const VkRect2D right{{int32_t(kWidth / 2), 0}, {kWidth / 2, kHeight}};
+
+  HostSteps host;
+  host.in_scene = [&](VkCommandBuffer cmd) {  // the scene's rendering cleared depth to 1, the far plane
+    VkClearAttachment plane{};
+    plane.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+    plane.clearValue.depthStencil.depth = quad_depth;
+    const VkClearRect rect{right, 0, 1};
+    vkCmdClearAttachments(cmd, 1, &plane, 1, &rect);
+  };
+  HostSteps host_viewport = host;
+  host_viewport.before_draw = [&](VkCommandBuffer cmd) {
+    const VkViewport viewport{float(right.offset.x), 0.0f, float(right.extent.width), float(kHeight), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &right);
+  };
+  auto left_half = [](const draw::RgbaImage& image) {
+    std::size_t n = 0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+      for (std::uint32_t x = 0; x < kWidth / 2; ++x) n += test::is_saturated(test::pixel(image, x, y)) ? 1 : 0;
+    return n;
+  };
+
+  sp_draw_options by_area;
+  sp_draw_options_init(&by_area);
+  by_area.area = &right;
+  by_area.scene_depth = 0;
+  const draw::RgbaImage a = frame(0.0, &by_area, true, host);
+  EXPECT_GT(coloured_pixels(a), 200u) << "spots on the quad, seen in the right half, should show";
+  EXPECT_EQ(left_half(a), 0u);
+
+  sp_draw_options by_host;
+  sp_draw_options_init(&by_host);
+  by_host.viewport_width = right.extent.width;
+  by_host.viewport_height = right.extent.height;
+  by_host.viewport_x = right.offset.x;
+  by_host.scene_depth = 0;
+  const draw::RgbaImage b = frame(0.0, &by_host, true, host_viewport);
+  EXPECT_EQ(coloured_pixels(b), coloured_pixels(a)) << "the same viewport, told by viewport_x instead of an area";
+
+  by_host.viewport_x = 0;  // wrong: the centres are looked up in the left half, where nothing is
+  EXPECT_EQ(coloured_pixels(frame(0.0, &by_host, true, host_viewport)), 0u);
 }
 
 // The camera turned away from the quad: no spot in view, but the source

@@ -371,6 +371,26 @@ TEST_F(Host, MisuseIsAnErrorNotACrash) {
   nan_view[0][0] = std::nanf("");
   ASSERT_TRUE(vis->record_simulation(cmd, 0.0).ok());
   EXPECT_FALSE(vis->record_draw(cmd, nan_view, camera_.projection).ok());
+  // The viewport travels to the shaders as 16-bit halves: each misuse named.
+  const struct {
+    const char* names;
+    VkRect2D area;
+    bool with_area;
+    DrawOptions options;
+  } bad_viewports[] = {
+      {"offset must not be negative", {{-1, 0}, {8, 8}}, true, {}},
+      {"viewport_x and viewport_y must be 0 or the area's offset", {{4, 4}, {8, 8}}, true, {.viewport_x = 5}},
+      {"at most 65535 pixels a side", {}, false, {.viewport_width = 70000, .viewport_height = 8}},
+      {"viewport_x and viewport_y must be at most 65535", {}, false, {.viewport_y = 70000}},
+  };
+  for (const auto& bad : bad_viewports) {
+    DrawOptions options = bad.options;
+    if (bad.with_area) options.area = &bad.area;
+    const Result<bool> refused_draw = vis->record_draw(cmd, camera_.view, camera_.projection, options);
+    ASSERT_FALSE(refused_draw.ok()) << bad.names;
+    EXPECT_EQ(refused_draw.error().code, ErrorCode::InvalidArgument);
+    EXPECT_NE(refused_draw.error().message.find(bad.names), std::string::npos) << refused_draw.error().message;
+  }
   SP_VK_CHECK(vkEndCommandBuffer(cmd));
   submit_and_wait({cmd});
 }

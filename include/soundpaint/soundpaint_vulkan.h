@@ -144,6 +144,12 @@ typedef struct sp_draw_options {
    * 0 x 0 without one does without both. With an area, equal to its extent. */
   uint32_t viewport_width;
   uint32_t viewport_height;
+  /* The viewport's top-left corner in the framebuffer, in pixels: where a
+   * spot's centre is looked up in the scene depth. 0, 0 (the default) with
+   * an area takes the area's offset; with an area, 0, 0 or equal to its
+   * offset. Needed only without an area, for a viewport not at (0, 0). */
+  uint32_t viewport_x;
+  uint32_t viewport_y;
   /* Index of a view registered with sp_visualizer_set_scene_depth: spots are
    * then clipped to the surface they lie on (no colour bleeding under a
    * wall or into the air). That depth image must be in

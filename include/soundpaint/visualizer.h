@@ -74,6 +74,12 @@ struct DrawOptions {
   // off-screen arrows can be placed; 0 x 0 does without both.
   std::uint32_t viewport_width = 0;
   std::uint32_t viewport_height = 0;
+  // The viewport's top-left corner in the framebuffer, in pixels (area's
+  // offset when area is given): where a spot's centre is looked up in the
+  // scene depth (below). Only needed with a viewport that does not start at
+  // (0, 0) and no area, e.g. split screen with the viewport set by the host.
+  std::uint32_t viewport_x = 0;
+  std::uint32_t viewport_y = 0;
   // Index of a view registered with set_scene_depth(): spots are then
   // clipped to the surface they lie on. That depth image must be in
   // VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL (or DEPTH_STENCIL_READ_ONLY)

@@ -7,9 +7,11 @@
 
 #include "sp_types.h"
 
-// Vertices of one indicator quad (two triangles); the compute pass writes the
-// same count into the VkDrawIndirectCommand it keeps (Control.draw_vertex_count).
-#define SP_INDICATOR_QUAD_VERTICES 6u
+// Vertices of one indicator quad, a two-triangle strip (four vertex
+// invocations where a list of two triangles takes six); the compute pass
+// writes the same count into the VkDrawIndirectCommand it keeps
+// (Control.draw_vertex_count).
+#define SP_INDICATOR_QUAD_VERTICES 4u
 // Linear RGB a frame is cleared to; the scene's distance fog fades towards it.
 #define SP_CLEAR_RGB 0.02f, 0.022f, 0.03f
 // Metres an indicator floats above its surface along its normal: enough to
@@ -121,7 +123,7 @@ struct IndicatorPush {
   float lifetime;            // the display's lifetime: max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME), seconds
   float pixel_scale;         // pixels per metre at 1 m in front of the eye, |projection[1][1]| * viewport height / 2;
                              // 0 when the viewport is unknown (no minimum size)
-  float viewport_width;      // pixels; 0 when unknown
+  uint viewport_size;        // pixels, width | height << 16; 0 when unknown
   float size_scale;          // display.size_scale
   float opacity_scale;       // display.opacity_scale
   float min_opacity;         // display.min_opacity
@@ -129,7 +131,7 @@ struct IndicatorPush {
   float depth_a;             // the projection's depth terms, projection[2][2] and [3][2]:
   float depth_b;             //   view distance = depth_b / (depth + depth_a) for a perspective projection
   float inv_indicator_size;  // 1 / indicator_size: size * this = E / E0
-  float viewport_height;     // pixels; 0 when unknown
+  uint viewport_origin;      // the viewport's top-left pixel in the framebuffer (and the scene's depth), x | y << 16
 };
 SP_CHECK_LAYOUT(sizeof(IndicatorPush) == 128 && offsetof(IndicatorPush, eye) == 64 && offsetof(IndicatorPush, current_step) == 76 && offsetof(IndicatorPush, dt) == 80 && offsetof(IndicatorPush, lifetime) == 84 && offsetof(IndicatorPush, flags) == 108 && offsetof(IndicatorPush, depth_a) == 112);
 

@@ -148,6 +148,11 @@ DrawOptions draw_options_from(const sp_draw_options& in, const char* function) {
                     std::to_string(extent.height) + ")");
     }
   }
+  out.viewport_x = in.viewport_x;
+  out.viewport_y = in.viewport_y;
+  if (in.area != nullptr && (in.viewport_x != 0 || in.viewport_y != 0) &&
+      (std::int64_t(in.viewport_x) != in.area->offset.x || std::int64_t(in.viewport_y) != in.area->offset.y))
+    bad_field(function, o, "viewport_x", "and viewport_y must be 0 or the area's offset");
   if (in.scene_depth < -1) bad_field(function, o, "scene_depth", "must be -1 (none) or a registered view's index");
   out.scene_depth = in.scene_depth;
   return out;
@@ -190,6 +195,8 @@ void sp_draw_options_init(sp_draw_options* options) noexcept {
   out.area = defaults.area;
   out.viewport_width = defaults.viewport_width;
   out.viewport_height = defaults.viewport_height;
+  out.viewport_x = defaults.viewport_x;
+  out.viewport_y = defaults.viewport_y;
   out.scene_depth = defaults.scene_depth;
   *options = out;
 }

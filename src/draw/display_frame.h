@@ -13,10 +13,15 @@
 
 namespace sp::draw {
 
+// The most pixels a viewport's side or origin may have: each pair travels
+// to the indicator pass as two 16-bit halves of a push-constant word.
+inline constexpr std::uint32_t kMaxViewportPixels = 0xFFFFu;
+
 struct DrawView {
   glm::mat4 view_projection{1.0f};  // world -> Vulkan clip space
   glm::vec3 eye{0.0f};              // camera position, world space
   glm::vec2 viewport{1.0f};         // pixels
+  glm::uvec2 viewport_origin{0u};   // the viewport's top-left pixel in the framebuffer and the scene's depth
   float pixel_scale = 0.0f;         // pixels per metre 1 m ahead: |projection[1][1]| * height / 2; 0: unknown
   float depth_a = 0.0f;             // projection[2][2]; view distance = depth_b / (depth + depth_a)
   float depth_b = 0.0f;             // projection[3][2]

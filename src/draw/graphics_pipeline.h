@@ -28,6 +28,7 @@ struct GraphicsPipelineDesc {
   VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if any
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   Blend blend = Blend::Opaque;
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   bool depth_write = true;
   bool depth_test = true;                                   // false: drawn over everything (screen-space overlays)
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // GREATER_OR_EQUAL for reversed depth

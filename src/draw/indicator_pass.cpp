@@ -11,6 +11,7 @@
 #include "indicator.frag.spv.h"
 #include "indicator.vert.spv.h"
 #include "indicator_clip.frag.spv.h"
+#include "indicator_clip.vert.spv.h"
 #include "soundpaint/result.h"
 #include "sp_shapes.h"
 #include "vk/barriers.h"
@@ -28,6 +29,13 @@ constexpr std::uint32_t kPrepassGroup = 64;
 
 std::uint32_t groups(std::uint32_t threads) { return (threads + kPrepassGroup - 1) / kPrepassGroup; }
 
+// Two pixel counts in one push-constant word, x | y << 16 (IndicatorPush):
+// record_draw refuses viewports beyond kMaxViewportPixels.
+std::uint32_t pack_pixels(glm::uvec2 v) {
+  const glm::uvec2 c = glm::min(v, glm::uvec2(kMaxViewportPixels));
+  return c.x | (c.y << 16);
+}
+
 GraphicsPipelineDesc indicator_desc(const DrawTarget& target, VkDescriptorSetLayout set) {
   GraphicsPipelineDesc desc;
   desc.vertex_spirv = sp_spirv_indicator_vert;
@@ -44,6 +52,7 @@ GraphicsPipelineDesc indicator_desc(const DrawTarget& target, VkDescriptorSetLay
   desc.blend = Blend::Alpha;
   desc.depth_write = false;
   desc.name = "indicator pass";
+  desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;  // SP_INDICATOR_QUAD_VERTICES
   return desc;
 }
 
@@ -68,6 +77,7 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
 
   GraphicsPipelineDesc desc = indicator_desc(target, bindings_.layout());
   pipeline_ = GraphicsPipeline(context, desc);
+  desc.vertex_spirv = sp_spirv_indicator_clip_vert;
   desc.fragment_spirv = sp_spirv_indicator_clip_frag;
   desc.set_layout_1 = depth_sets_.layout();
   desc.name = "indicator pass, clipped";
@@ -163,8 +173,8 @@ void IndicatorPass::record(VkCommandBuffer cmd, const DrawView& view, const Disp
   push.dt = frame.dt;
   push.lifetime = frame.lifetime;
   push.pixel_scale = view.pixel_scale;
-  push.viewport_width = view.viewport.x;
-  push.viewport_height = view.viewport.y;
+  push.viewport_size = pack_pixels(glm::uvec2(glm::round(glm::max(view.viewport, glm::vec2(0.0f)))));
+  push.viewport_origin = pack_pixels(view.viewport_origin);
   push.size_scale = frame.settings.size_scale;
   push.opacity_scale = frame.settings.opacity_scale;
   push.min_opacity = frame.settings.min_opacity;

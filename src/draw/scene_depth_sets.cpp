@@ -27,7 +27,7 @@ SceneDepthSets::SceneDepthSets(const vk::Context& context, std::uint32_t capacit
   binding.binding = 0;
   binding.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   binding.descriptorCount = 1;
-  binding.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+  binding.stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   layout_ = vk::create_descriptor_set_layout(context, {&binding, 1}, "scene depth layout");
   pool_ = vk::create_descriptor_pool(context, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, capacity, capacity,
                                      "scene depth pool");
