@@ -125,9 +125,11 @@ class GpuVisualizer final : public VisualizerBase {
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     vkCmdFillBuffer(cmd, destination, offset, sizeof(SimulationTotals), 0u);
-    // WAW: the zeros land before the 32-bit counts fill the low halves.
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    // WAW: the zeros land before the 32-bit counts fill the low halves. A
+    // fill is a transfer command of no one sub-stage (the validation layer
+    // books it under copy, not clear): all transfer stages.
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     using shader::Control;
     auto region = [&](std::size_t from, std::size_t to, VkDeviceSize bytes) {
       return VkBufferCopy{from, offset + to, bytes};
