@@ -151,7 +151,8 @@ void OffscreenTarget::begin(VkCommandBuffer cmd) const {
 
 void OffscreenTarget::begin_overlays(VkCommandBuffer cmd) const {
   vkCmdEndRendering(cmd);
-  // RAW: the scene's depth writes land before the overlays test and sample it.
+  // RAW: the scene's depth writes land before the overlays test and sample
+  // it: soundpaint samples it in its vertex and fragment stages.
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   VkImageMemoryBarrier2 to_read =
@@ -159,7 +160,7 @@ void OffscreenTarget::begin_overlays(VkCommandBuffer cmd) const {
                     VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
   to_read.srcStageMask = depth_stages;
   to_read.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  to_read.dstStageMask = depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+  to_read.dstStageMask = depth_stages | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
   to_read.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
   pipeline_barrier(cmd, &to_read, 1);
 

@@ -145,12 +145,13 @@ void RenderTarget::end_and_copy(VkCommandBuffer cmd) const {
 
 void RenderTarget::begin_overlays(VkCommandBuffer cmd) const {
   vkCmdEndRendering(cmd);
-  // RAW: the scene's depth writes land before the overlays test and sample it.
+  // RAW: the scene's depth writes land before the overlays test and sample
+  // it (the indicators' vertex stage samples each spot's centre).
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   image_barrier(cmd, depth_.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                 VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                depth_stages | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   begin_rendering(cmd, {width_, height_},
                   attachment({color_.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ATTACHMENT_LOAD_OP_LOAD,

@@ -395,11 +395,12 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
   painting_.scene_pass->record(cmd, view, visualizer.scene().listener());
   vkCmdEndRendering(cmd);
   stamp(3, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
-  // RAW: the scene's depth lands before the indicators test and sample it.
+  // RAW: the scene's depth lands before the indicators test and sample it
+  // (their vertex stage samples each spot's centre).
   draw::image_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
                       VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      depth_stages | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   stamp(4, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
   begin_pass(cmd, swapchain_->views()[image], swapchain_->depth_view(image), extent, false);
