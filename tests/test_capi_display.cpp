@@ -276,6 +276,7 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
   EXPECT_EQ(cpp.viewport_y, 0u);
 
   const VkRect2D empty{{0, 0}, {0, 16}};
+  const VkRect2D behind{{-4, 0}, {16, 16}};
   const struct {
     const char* names;
     std::function<void(sp_draw_options&)> spoil;
@@ -294,6 +295,13 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
          o.area = &area;
          o.viewport_x = 5;
        }},
+      {"options->viewport_x", [](auto& o) { o.viewport_y = 70000; }},
+      {"options->viewport_width",
+       [](auto& o) {
+         o.viewport_width = 70000;
+         o.viewport_height = 10;
+       }},
+      {"options->area", [&](auto& o) { o.area = &behind; }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = -2; }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = std::numeric_limits<std::int32_t>::min(); }},
   };

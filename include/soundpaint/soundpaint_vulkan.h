@@ -144,23 +144,28 @@ typedef struct sp_draw_options {
    * 0 x 0 without one does without both. With an area, equal to its extent. */
   uint32_t viewport_width;
   uint32_t viewport_height;
-  /* The viewport's top-left corner in the framebuffer, in pixels: where a
-   * spot's centre is looked up in the scene depth. 0, 0 (the default) with
-   * an area takes the area's offset; with an area, 0, 0 or equal to its
-   * offset. Needed only without an area, for a viewport not at (0, 0). */
-  uint32_t viewport_x;
-  uint32_t viewport_y;
   /* Index of a view registered with sp_visualizer_set_scene_depth: spots are
    * then clipped to the surface they lie on (no colour bleeding under a
    * wall or into the air). That depth image must be in
    * VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL (or DEPTH_STENCIL_READ_ONLY)
    * during the draw, e.g. as the rendering's read-only depth attachment.
-   * -1 (the default): no clipping. */
+   * The barrier that makes its depth writes visible to the draw must name
+   * the vertex shader stage too (with the fragment shader and the fragment
+   * tests): each spot's centre is looked up there. -1 (the default): no
+   * clipping. */
   int32_t scene_depth;
+  /* The viewport's top-left corner in the framebuffer, in pixels: where a
+   * spot's centre is looked up in the scene depth. 0, 0 (the default) with
+   * an area takes the area's offset; with an area, 0, 0 or equal to its
+   * offset. Needed only without an area, for a viewport not at (0, 0) (split
+   * screen). The viewport's height must be positive (flip y in the
+   * projection, not the viewport); sizes and origins at most 65535. */
+  uint32_t viewport_x;
+  uint32_t viewport_y;
 } sp_draw_options;
 
-/* Fills *options (NULL: no-op) with the defaults: no area, 0 x 0, no scene
- * depth. Thread-safe. */
+/* Fills *options (NULL: no-op) with the defaults: no area, 0 x 0 at 0, 0,
+ * no scene depth. Thread-safe. */
 void sp_draw_options_init(sp_draw_options* options) SP_NOEXCEPT;
 
 /* sp_visualizer_record_draw with the display's options (*options non-NULL,

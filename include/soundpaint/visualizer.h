@@ -78,13 +78,17 @@ struct DrawOptions {
   // offset when area is given): where a spot's centre is looked up in the
   // scene depth (below). Only needed with a viewport that does not start at
   // (0, 0) and no area, e.g. split screen with the viewport set by the host.
+  // The viewport's height must be positive (flip y in the projection, not
+  // the viewport); sizes and origins at most 65535.
   std::uint32_t viewport_x = 0;
   std::uint32_t viewport_y = 0;
   // Index of a view registered with set_scene_depth(): spots are then
   // clipped to the surface they lie on. That depth image must be in
   // VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL (or DEPTH_STENCIL_READ_ONLY)
-  // during the draw, e.g. as the rendering's read-only depth attachment.
-  // Negative: no clipping.
+  // during the draw, e.g. as the rendering's read-only depth attachment, and
+  // the barrier that makes its depth writes visible to the draw must name
+  // the vertex shader stage too (with the fragment shader and the fragment
+  // tests): each spot's centre is looked up there. Negative: no clipping.
   std::int32_t scene_depth = -1;
 };
 

@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "capi/capi_internal.h"
+#include "draw/display_frame.h"
 
 namespace sp::capi {
 namespace {
@@ -148,6 +149,13 @@ DrawOptions draw_options_from(const sp_draw_options& in, const char* function) {
                     std::to_string(extent.height) + ")");
     }
   }
+  const std::uint32_t limit = draw::kMaxViewportPixels;
+  if (in.viewport_width > limit || in.viewport_height > limit)
+    bad_field(function, o, "viewport_width", "and viewport_height must be at most " + std::to_string(limit));
+  if (in.viewport_x > limit || in.viewport_y > limit)
+    bad_field(function, o, "viewport_x", "and viewport_y must be at most " + std::to_string(limit));
+  if (in.area != nullptr && (in.area->offset.x < 0 || in.area->offset.y < 0))
+    bad_field(function, o, "area", "offset must not be negative");
   out.viewport_x = in.viewport_x;
   out.viewport_y = in.viewport_y;
   if (in.area != nullptr && (in.viewport_x != 0 || in.viewport_y != 0) &&
