@@ -63,6 +63,22 @@ void collapse() {
 #endif
 }
 
+#ifdef SP_CLIP
+// 1 / w of the quad's plane where the eye sees it at device coordinates q:
+// at the point anchor + s * tangent + t * bitangent that projects to q.
+// Clip coordinates are linear along the plane, so s and t solve a 2 x 2
+// system. Seen edge-on (no solution), the anchor's own.
+float plane_inv_w(vec4 anchor_clip, vec4 tangent_clip, vec4 bitangent_clip, vec2 q) {
+  vec2 a = anchor_clip.xy - q * anchor_clip.w;
+  vec2 u = tangent_clip.xy - q * tangent_clip.w;
+  vec2 v = bitangent_clip.xy - q * bitangent_clip.w;
+  float det = u.x * v.y - u.y * v.x;
+  float w = anchor_clip.w;
+  if (abs(det) > 1.0e-12) w += ((a.y * v.x - a.x * v.y) * tangent_clip.w + (a.x * u.y - a.y * u.x) * bitangent_clip.w) / det;
+  return 1.0 / (w > 0.0 ? w : anchor_clip.w);
+}
+#endif
+
 void main() {
   uint slot = gl_InstanceIndex;
   Indicator ind = ring[slot];
@@ -116,18 +132,26 @@ void main() {
   // vertex, where each fragment looking it up cost a sixth of the pass
   // (bench/RESULTS.md). A centre hidden behind a wall leaves nothing to
   // reach under it into the next room, and none in the air past an edge.
+  // The test compares the depth at the centre's pixel with the quad's
+  // plane at that pixel's centre, not at the centre itself: half a pixel
+  // along a plane seen at a slant is more than the tolerance far away.
   // Off screen, outside the depth image or with the viewport unknown,
   // nothing is known: it shows.
   uvec2 depth_size = uvec2(textureSize(scene_depth, 0));
   uvec2 viewport = uvec2(push.viewport_size & 0xFFFFu, push.viewport_size >> 16);
-  if (viewport.x > 0u && anchor_clip.w > 0.0) {
+  if (all(greaterThan(viewport, uvec2(0u))) && anchor_clip.w > 0.0) {
     vec2 ndc = anchor_clip.xy / anchor_clip.w;
     uvec2 origin = uvec2(push.viewport_origin & 0xFFFFu, push.viewport_origin >> 16);
-    uvec2 texel = origin + min(uvec2((0.5 * ndc + 0.5) * vec2(viewport)), viewport - 1u);
-    if (all(lessThan(abs(ndc), vec2(1.0))) && all(lessThan(texel, depth_size)) &&
-        !sp_on_spot_surface(ivec2(texel), 1.0 / anchor_clip.w, plane_depth)) {
-      collapse();
-      return;
+    uvec2 pixel = min(uvec2((0.5 * ndc + 0.5) * vec2(viewport)), viewport - 1u);
+    uvec2 texel = origin + pixel;
+    if (all(lessThan(abs(ndc), vec2(1.0))) && all(lessThan(texel, depth_size))) {
+      vec2 pixel_centre = (vec2(pixel) + 0.5) / vec2(viewport) * 2.0 - 1.0;
+      float inv_w = plane_inv_w(anchor_clip, push.view_proj * vec4(tangent, 0.0), push.view_proj * vec4(bitangent, 0.0),
+                                pixel_centre);
+      if (!sp_on_spot_surface(ivec2(texel), inv_w, plane_depth)) {
+        collapse();
+        return;
+      }
     }
   }
   out_depth_size = depth_size;

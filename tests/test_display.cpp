@@ -182,6 +182,26 @@ TEST_F(Display, DirectionOffDrawsSymmetricSpots) {
   EXPECT_LT(glm::length(b.centroid - project(view, {0, 0, 0})), 1.5f);
 }
 
+// The open floor seen at a slant from 4 m up, 11 to 17 m ahead, in a small
+// view (240 x 180, 70 degrees high). Every spot's centre is on the floor in
+// plain view, so every spot shows, wherever its centre falls within its
+// pixel: the plane is compared with the depth at the centre's pixel at that
+// pixel's own centre, not at the spot's. Half a pixel along a floor seen at
+// a slant is about 0.5 x distance / 128 (pixels per radian here) off the
+// plane, 5 cm at 13 m, beyond the tolerance of 1 cm + 0.2 % of the distance.
+TEST_F(Display, SpotsOnAFloorSeenAtASlantAllShow) {
+  const World world = floor_world();
+  const draw::ViewCamera view = camera(world, {0, 4, -9}, {0, 0, 6}, 70.0f);
+  std::vector<std::string> missing;
+  for (int k = 0; k < 24; ++k) {
+    // Centres spread over sub-pixel offsets, in a band the camera sees.
+    const glm::vec3 at(-3.0f + 0.263f * float(k), 0.0f, 1.5f + 0.231f * float(k));
+    const Blob b = blob(draw(world, view, {spot(at, {0, 1, 0}, {0, -1, 0}, 0.6f)}), is_red);
+    if (b.pixels < 20) missing.push_back(std::to_string(at.x) + ", " + std::to_string(at.z));
+  }
+  EXPECT_TRUE(missing.empty()) << missing.size() << " of 24 spots missing, first at " << missing.front();
+}
+
 // A 2 x 2 m table top at y = 1 over a floor far below; a spot 0.1 m from
 // its +x edge, 0.8 m across, overhangs the edge by 0.3 m. Seen from above
 // the table, past the edge lies only air over the floor 5 m below; seen
