@@ -95,7 +95,7 @@ Projected project(const Camera& camera, const Indicator& indicator) {
 // Marks the pixels an indicator's spot may touch: its shape, at least
 // SP_SHAPE_MIN_PIXELS across and a quarter larger for direct sound, its
 // tail of up to 1.6 radii behind it, the halo's margin of 0.45 radii, and
-// 1.5 px of slack (shaders/indicator.vert).
+// 1.5 px of slack (shaders/indicator_vertex.glsl).
 void mark_disc(std::vector<bool>& mask, const Projected& p) {
   const float radius = std::max(1.25f * p.radius, 0.5f * SP_SHAPE_MIN_PIXELS);
   const float reach = radius * (1.0f + 1.6f + 0.45f) + 1.5f;

@@ -28,15 +28,16 @@ struct GraphicsPipelineDesc {
   VkFormat stencil_format = VK_FORMAT_UNDEFINED;  // the rendering's stencil attachment, if any
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   Blend blend = Blend::Opaque;
-  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;  // the indicator pass draws strips
   bool depth_write = true;
   bool depth_test = true;                                   // false: drawn over everything (screen-space overlays)
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;  // GREATER_OR_EQUAL for reversed depth
   const char* name = "graphics pipeline";                   // debug name
 };
 
-// Triangle lists, no culling (the level's surfaces are seen from both
-// sides), dynamic viewport and scissor. Throws sp::Exception on failure.
+// The description's topology (triangle lists unless told), no culling (the
+// level's surfaces are seen from both sides), dynamic viewport and scissor.
+// Throws sp::Exception on failure.
 class GraphicsPipeline {
  public:
   GraphicsPipeline() = default;
