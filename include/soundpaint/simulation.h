@@ -239,7 +239,7 @@ enum class Backend { Cpu, Gpu };
 inline constexpr std::uint64_t kDefaultMemoryBudgetBytes = std::uint64_t{2} << 30;
 
 struct GpuSettings {
-  bool validation = false;  // Khronos validation layer (also SOUNDPAINT_VALIDATION=1)
+  bool validation = false;  // Khronos validation layer, synchronization checks included (also SOUNDPAINT_VALIDATION=1)
   std::string device_name;  // substring of the device to use; empty: SOUNDPAINT_DEVICE, else the best
   // Accept a device that is a CPU in disguise (lavapipe / llvmpipe). When
   // false and that is all there is, creation fails with ErrorCode::Vulkan:

@@ -75,6 +75,8 @@ VkInstance create_instance(MessageLog* messages, const std::vector<std::string>&
     }
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
+      extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   }
   // Lists devices layered over another API (MoltenVK) too; harmless elsewhere.
   if (has_instance_extension(nullptr, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME)) {
@@ -89,9 +91,20 @@ VkInstance create_instance(MessageLog* messages, const std::vector<std::string>&
   app.apiVersion = VK_API_VERSION_1_3;
 
   const VkDebugUtilsMessengerCreateInfoEXT messenger_info = debug_messenger_info(messages);
+  // Validation checks synchronization too: hazards between commands, such
+  // as a shader stage reading what no barrier made visible to it. Where the
+  // layer offers the switch (every Khronos layer of the last years does).
+  const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{};
+  features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+  features.pNext = &messenger_info;
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  const bool sync_validation =
+      messages != nullptr && has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   VkInstanceCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-  info.pNext = messages != nullptr ? &messenger_info : nullptr;
+  if (messages != nullptr) info.pNext = sync_validation ? static_cast<const void*>(&features) : &messenger_info;
   info.flags = flags;
   info.pApplicationInfo = &app;
   info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
