@@ -74,7 +74,11 @@ float plane_inv_w(vec4 anchor_clip, vec4 tangent_clip, vec4 bitangent_clip, vec2
   vec2 v = bitangent_clip.xy - q * bitangent_clip.w;
   float det = u.x * v.y - u.y * v.x;
   float w = anchor_clip.w;
-  if (abs(det) > 1.0e-12) w += ((a.y * v.x - a.x * v.y) * tangent_clip.w + (a.x * u.y - a.y * u.x) * bitangent_clip.w) / det;
+  if (abs(det) > 1.0e-12) {
+    float s = (a.y * v.x - a.x * v.y) / det;
+    float t = (a.x * u.y - a.y * u.x) / det;
+    w += s * tangent_clip.w + t * bitangent_clip.w;
+  }
   return 1.0 / (w > 0.0 ? w : anchor_clip.w);
 }
 #endif

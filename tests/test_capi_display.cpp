@@ -277,6 +277,7 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
 
   const VkRect2D empty{{0, 0}, {0, 16}};
   const VkRect2D behind{{-4, 0}, {16, 16}};
+  const VkRect2D huge{{0, 0}, {70000, 16}};
   const struct {
     const char* names;
     std::function<void(sp_draw_options&)> spoil;
@@ -302,6 +303,7 @@ TEST(CapiDrawOptions, FieldsAreCheckedAndAnAreaGivesTheViewportSize) {
          o.viewport_height = 10;
        }},
       {"options->area", [&](auto& o) { o.area = &behind; }},
+      {"options->area", [&](auto& o) { o.area = &huge; }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = -2; }},
       {"options->scene_depth", [](auto& o) { o.scene_depth = std::numeric_limits<std::int32_t>::min(); }},
   };

@@ -112,7 +112,8 @@ void OffscreenTarget::begin(VkCommandBuffer cmd) const {
   barriers[0].dstAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
   const VkPipelineStageFlags2 depth_stages =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  // (The previous frame's overlays sampled depth in their fragment shaders.)
+  // (The previous frame's overlays sampled depth in their vertex and
+  // fragment shaders; a source stage covers the stages before it.)
   barriers[1].srcStageMask = depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
   barriers[1].srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   barriers[1].dstStageMask = depth_stages;

@@ -174,7 +174,8 @@ void sp_draw_options_init(sp_draw_options* options) SP_NOEXCEPT;
  * when the display settings ask for them and the viewport size is known.
  * Errors: as sp_visualizer_record_draw, plus SP_ERROR_INVALID_ARGUMENT
  * naming the field (NULL options, one viewport side 0, a size unlike the
- * area's, scene_depth below -1 or not a registered view). */
+ * area's, an origin unlike the area's, a size, origin or area past 65535,
+ * a negative area offset, scene_depth below -1 or not a registered view). */
 sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
                                        const float projection[16], const sp_draw_options* options) SP_NOEXCEPT;
 

@@ -154,8 +154,13 @@ DrawOptions draw_options_from(const sp_draw_options& in, const char* function) {
     bad_field(function, o, "viewport_width", "and viewport_height must be at most " + std::to_string(limit));
   if (in.viewport_x > limit || in.viewport_y > limit)
     bad_field(function, o, "viewport_x", "and viewport_y must be at most " + std::to_string(limit));
-  if (in.area != nullptr && (in.area->offset.x < 0 || in.area->offset.y < 0))
-    bad_field(function, o, "area", "offset must not be negative");
+  if (in.area != nullptr) {
+    const VkRect2D& area = *in.area;
+    if (area.offset.x < 0 || area.offset.y < 0) bad_field(function, o, "area", "offset must not be negative");
+    if (std::uint32_t(area.offset.x) > limit || std::uint32_t(area.offset.y) > limit || area.extent.width > limit ||
+        area.extent.height > limit)
+      bad_field(function, o, "area", "offset and extent must be at most " + std::to_string(limit));
+  }
   out.viewport_x = in.viewport_x;
   out.viewport_y = in.viewport_y;
   if (in.area != nullptr && (in.viewport_x != 0 || in.viewport_y != 0) &&
