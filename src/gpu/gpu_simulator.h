@@ -22,8 +22,9 @@ Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, Wor
 // Where a GPU simulator keeps its indicators, for a draw pass on the same
 // device: the ring of shader::Indicator and the VkDrawIndirectCommand whose
 // instanceCount the compute pass keeps equal to the ring's filled slots
-// (SP_INDICATOR_QUAD_VERTICES, a triangle strip, per instance). Both are written by each step's compute work;
-// a draw recorded after Simulator::step() returned sees that step's state.
+// (SP_INDICATOR_QUAD_VERTICES, a triangle strip, per instance). Both are
+// written by each step's compute work; a draw recorded after
+// Simulator::step() returned sees that step's state.
 struct IndicatorView {
   vk::Context* context = nullptr;
   VkBuffer ring = VK_NULL_HANDLE;  // STORAGE_BUFFER, ring_capacity entries

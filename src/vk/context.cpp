@@ -57,6 +57,10 @@ VkInstance create_instance(MessageLog* messages, const std::vector<std::string>&
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   VkInstanceCreateFlags flags = 0;
+  // Validation checks synchronization too, where the layer offers the switch
+  // (every Khronos layer of the last years does): hazards between commands,
+  // such as a shader stage reading what no barrier made visible to it.
+  bool sync_validation = false;
   for (const std::string& name : wanted) {
     if (!has_instance_extension(nullptr, name.c_str()))
       throw Exception(ErrorCode::Vulkan, "the Vulkan instance extension " + name + " is not available");
@@ -75,8 +79,8 @@ VkInstance create_instance(MessageLog* messages, const std::vector<std::string>&
     }
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    if (has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
-      extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    sync_validation = has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    if (sync_validation) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   }
   // Lists devices layered over another API (MoltenVK) too; harmless elsewhere.
   if (has_instance_extension(nullptr, VK_KHR_PORTABILITY_ENUMERATION_EXTENSION_NAME)) {
@@ -91,17 +95,12 @@ VkInstance create_instance(MessageLog* messages, const std::vector<std::string>&
   app.apiVersion = VK_API_VERSION_1_3;
 
   const VkDebugUtilsMessengerCreateInfoEXT messenger_info = debug_messenger_info(messages);
-  // Validation checks synchronization too: hazards between commands, such
-  // as a shader stage reading what no barrier made visible to it. Where the
-  // layer offers the switch (every Khronos layer of the last years does).
   const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
   VkValidationFeaturesEXT features{};
   features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
   features.pNext = &messenger_info;
   features.enabledValidationFeatureCount = 1;
   features.pEnabledValidationFeatures = enables;
-  const bool sync_validation =
-      messages != nullptr && has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   VkInstanceCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
   if (messages != nullptr) info.pNext = sync_validation ? static_cast<const void*>(&features) : &messenger_info;
