@@ -257,9 +257,10 @@ TEST(Simulation, RingAdmitsAShareOfSpotsOfEqualWorthRatherThanNone) {
 }
 
 // The CPU step leaves its indicators in per-chunk lists and merges them
-// only on request; the ring's admission works on the chunks directly. Both
-// must give what one merged list gives: canonical (iteration, ray) order,
-// and admit() of that list, at every quota.
+// only on request; the ring's admission works on the chunks directly, from
+// the bins the workers counted. Both must give what one merged list gives:
+// canonical (iteration, ray) order, and admit() of that list, at every
+// quota, and at an indicator size other than the one the step binned with.
 TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
   Config config = quiet_config();
   config.ray_budget = 1000;  // 32 chunks of 32 rays
@@ -268,7 +269,7 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
   ASSERT_EQ(plan.total_rays, 1000u);
   CpuStepRunner runner(2, world.layer_names.size());
   CpuStepOutput out;
-  runner.run(world.geometry->bvh, make_layer_table(world), plan, make_sim_params(config, 0), out);
+  runner.run(world.geometry->bvh, make_layer_table(world), plan, make_sim_params(config, 0), 1.0f, out);
 
   const std::vector<shader::Indicator> all = out.canonical();
   ASSERT_EQ(all.size(), out.indicator_count());
@@ -286,12 +287,15 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
     return std::memcmp(&a, &b, sizeof(a)) == 0;
   };
   const auto count = static_cast<std::uint32_t>(all.size());
-  for (std::uint32_t quota : {1u, 7u, 334u, count / 2u, count - 1u, count, count + 9u}) {
-    const std::vector<shader::Indicator> expected = admit(all, quota, 1.0f);
-    const std::vector<shader::Indicator> admitted = out.admitted(quota, 1.0f);
-    ASSERT_EQ(admitted.size(), expected.size()) << "quota " << quota;
-    for (std::size_t i = 0; i < admitted.size(); ++i)
-      ASSERT_TRUE(same(admitted[i], expected[i])) << "quota " << quota << ", admitted indicator " << i;
+  for (const float inverse_size : {1.0f, 2.5f}) {
+    for (std::uint32_t quota : {1u, 7u, 334u, count / 2u, count - 1u, count, count + 9u}) {
+      const std::vector<shader::Indicator> expected = admit(all, quota, inverse_size);
+      const std::vector<shader::Indicator> admitted = out.admitted(quota, inverse_size);
+      ASSERT_EQ(admitted.size(), expected.size()) << "quota " << quota << ", inverse size " << inverse_size;
+      for (std::size_t i = 0; i < admitted.size(); ++i)
+        ASSERT_TRUE(same(admitted[i], expected[i]))
+            << "quota " << quota << ", inverse size " << inverse_size << ", admitted indicator " << i;
+    }
   }
 }
 

@@ -18,7 +18,8 @@ CpuStepThread::~CpuStepThread() {
 }
 
 void CpuStepThread::start(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, StepPlan plan,
-                          const shader::SimParams& params, const EmbreeTraversal* embree) {
+                          const shader::SimParams& params, float inverse_indicator_size,
+                          const EmbreeTraversal* embree) {
   {
     const std::lock_guard lock(mutex_);
     bvh_ = &bvh;
@@ -26,6 +27,7 @@ void CpuStepThread::start(const Bvh& bvh, std::span<const shader::LayerAcoustics
     layers_ = layers;
     plan_ = std::move(plan);
     params_ = params;
+    inverse_indicator_size_ = inverse_indicator_size;
     error_ = nullptr;
     state_ = State::Running;
   }
@@ -71,7 +73,7 @@ void CpuStepThread::loop() {
     std::exception_ptr error;
     const auto started = std::chrono::steady_clock::now();
     try {
-      runner_.run(*bvh_, layers_, plan_, params_, output_, embree_);
+      runner_.run(*bvh_, layers_, plan_, params_, inverse_indicator_size_, output_, embree_);
     } catch (...) {
       error = std::current_exception();
     }

@@ -24,8 +24,9 @@ class CpuStepThread {
   // Starts a step. Precondition: idle(). `bvh` and `layers` must stay
   // unchanged until the result is taken.
   // With `embree` (over `bvh`, unchanged likewise) rays cast through it.
+  // `inverse_indicator_size` as CpuStepRunner::run.
   void start(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, StepPlan plan,
-             const shader::SimParams& params, const EmbreeTraversal* embree = nullptr);
+             const shader::SimParams& params, float inverse_indicator_size, const EmbreeTraversal* embree = nullptr);
 
   bool idle() const;  // no step running, no result waiting
   // The finished step's output, or null while it runs (never blocks).
@@ -50,6 +51,7 @@ class CpuStepThread {
   std::span<const shader::LayerAcoustics> layers_;
   StepPlan plan_;
   shader::SimParams params_{};
+  float inverse_indicator_size_ = 0.0f;
   CpuStepOutput output_;
   double last_step_ms_ = 0.0;
   std::exception_ptr error_;

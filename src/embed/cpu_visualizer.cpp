@@ -130,7 +130,7 @@ class CpuVisualizer final : public VisualizerBase {
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
     worker_.start(bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_),
-                  embree_.get());
+                  inverse_indicator_size_, embree_.get());
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;

@@ -76,7 +76,8 @@ class CpuSimulator final : public Simulator {
       const Bvh& bvh = scene_.world().geometry->bvh;
       if (embree_) embree_->update(changes);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
-      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), last_, embree_.get());
+      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), inverse_indicator_size_,
+                  last_, embree_.get());
       ring_.push(last_.admitted(ring_quota_, inverse_indicator_size_));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);

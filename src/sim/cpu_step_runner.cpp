@@ -1,6 +1,7 @@
 #include "sim/cpu_step_runner.h"
 
 #include <algorithm>
+#include <bit>
 
 #include "sim/indicator_ring.h"
 #include "sp_ray_model.h"
@@ -25,19 +26,24 @@ CpuStepRunner::CpuStepRunner(unsigned threads, std::size_t layer_count)
 }
 
 void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, const StepPlan& plan,
-                        const shader::SimParams& params, CpuStepOutput& out, const EmbreeTraversal* embree) {
+                        const shader::SimParams& params, float inverse_indicator_size, CpuStepOutput& out,
+                        const EmbreeTraversal* embree) {
   TraceContext context{&bvh, layers, plan.sources, params, embree};
   const std::size_t chunks = (plan.total_rays + kChunkRays - 1) / kChunkRays;
   if (out.chunks_.size() < chunks) out.chunks_.resize(chunks);
   out.chunk_count_ = chunks;
   for (std::size_t c = 0; c < chunks; ++c) out.chunks_[c].list.clear();
+  out.worker_bins_.resize(pool_.size());
+  for (CpuStepOutput::BinCounts& counts : out.worker_bins_) counts.count.fill(0u);
+  out.binned_inverse_size_ = inverse_indicator_size;
   for (WorkerCounters& worker : worker_counters_) {
     worker.counters.casts = 0;
     std::fill(worker.counters.layers.begin(), worker.counters.layers.end(), LayerCounters{});
   }
 
   pool_.parallel_for(plan.total_rays, kChunkRays, [&](std::size_t first, std::size_t last, unsigned worker) {
-    DefaultInitVector<shader::Indicator>& indicators = out.chunks_[first / kChunkRays].list;
+    const std::size_t chunk = first / kChunkRays;
+    DefaultInitVector<shader::Indicator>& indicators = out.chunks_[chunk].list;
     std::size_t slot = 0;  // rays are grouped by source in ascending ray index
     for (std::size_t i = first; i < last; ++i) {
       while (i >= plan.sources[slot].first_ray + plan.sources[slot].ray_count) ++slot;
@@ -45,7 +51,12 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
                                                  static_cast<std::uint32_t>(i), params.seed, params.step);
       trace_ray(context, ray, indicators, worker_counters_[worker].counters);
     }
+    out.count_bins(chunk, inverse_indicator_size, out.worker_bins_[worker]);
   });
+
+  out.bins_.count.fill(0u);
+  for (const CpuStepOutput::BinCounts& counts : out.worker_bins_)
+    for (std::size_t b = 0; b < SP_ADMISSION_BINS; ++b) out.bins_.count[b] += counts.count[b];
 
   out.counters.casts = 0;
   out.counters.layers.assign(layer_count_, LayerCounters{});
@@ -61,6 +72,16 @@ std::size_t CpuStepOutput::indicator_count() const {
   return count;
 }
 
+void CpuStepOutput::count_bins(std::size_t c, float inverse_indicator_size, BinCounts& counts) {
+  Chunk& chunk = chunks_[c];
+  chunk.bins.resize(chunk.list.size());
+  for (std::size_t i = 0; i < chunk.list.size(); ++i) {
+    const std::uint32_t bin = shader::sp_admission_bin(chunk.list[i], inverse_indicator_size);
+    chunk.bins[i] = static_cast<std::uint16_t>(bin);
+    counts.count[bin] += 1u;
+  }
+}
+
 // Chunks hold rays in ascending order and each ray's indicators in ascending
 // iteration; a stable counting sort by iteration then yields (iteration, ray)
 // order, whatever thread ran which chunk. `keep` runs once per indicator.
@@ -68,12 +89,16 @@ template <class Keep>
 std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const {
   std::vector<const shader::Indicator*> kept;
   std::vector<std::size_t> offsets;  // per iteration + 1: how many kept, then where the next goes
-  for_each([&](const shader::Indicator& ind) {
-    if (!keep(ind)) return;
-    kept.push_back(&ind);
-    if (offsets.size() < ind.iteration + 2u) offsets.resize(ind.iteration + 2u, 0u);
-    offsets[ind.iteration + 1u] += 1u;
-  });
+  for (std::size_t c = 0; c < chunk_count_; ++c) {
+    const Chunk& chunk = chunks_[c];
+    for (std::size_t i = 0; i < chunk.list.size(); ++i) {
+      const shader::Indicator& ind = chunk.list[i];
+      if (!keep(ind, chunk.bins[i])) continue;
+      kept.push_back(&ind);
+      if (offsets.size() < ind.iteration + 2u) offsets.resize(ind.iteration + 2u, 0u);
+      offsets[ind.iteration + 1u] += 1u;
+    }
+  }
   for (std::size_t k = 1; k < offsets.size(); ++k) offsets[k] += offsets[k - 1u];
   std::vector<shader::Indicator> out(kept.size());
   for (const shader::Indicator* ind : kept) out[offsets[ind->iteration]++] = *ind;
@@ -81,12 +106,31 @@ std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const
 }
 
 std::vector<shader::Indicator> CpuStepOutput::canonical() const {
-  return canonical_where([](const shader::Indicator&) { return true; });
+  return canonical_where([](const shader::Indicator&, std::uint32_t) { return true; });
 }
 
 std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, float inverse_indicator_size) const {
-  const AdmissionPlan plan([&](auto&& visit) { for_each(visit); }, indicator_count(), quota, inverse_indicator_size);
-  return canonical_where([&](const shader::Indicator& ind) { return plan.admits(ind); });
+  if (std::bit_cast<std::uint32_t>(inverse_indicator_size) != std::bit_cast<std::uint32_t>(binned_inverse_size_)) {
+    // Not the size the workers binned with: every indicator's bin anew.
+    const AdmissionPlan plan(
+        [&](auto&& visit) {
+          for (std::size_t c = 0; c < chunk_count_; ++c)
+            for (const shader::Indicator& ind : chunks_[c].list) visit(ind);
+        },
+        indicator_count(), quota, inverse_indicator_size);
+    return canonical_where([&](const shader::Indicator& ind, std::uint32_t) { return plan.admits(ind); });
+  }
+  AdmissionPlan plan(indicator_count(), quota, inverse_indicator_size);
+  if (plan.admits_all()) return canonical();
+  std::copy(bins_.count.begin(), bins_.count.end(), plan.bins());
+  plan.plan_bins();
+  for (std::size_t c = 0; c < chunk_count_; ++c) {
+    const Chunk& chunk = chunks_[c];
+    for (std::size_t i = 0; i < chunk.list.size(); ++i)
+      if (plan.in_tiebreak_bin(chunk.bins[i])) plan.count_tiebreak(chunk.list[i]);
+  }
+  plan.plan_tiebreaks();
+  return canonical_where([&](const shader::Indicator& ind, std::uint32_t bin) { return plan.admits(bin, ind); });
 }
 
 }  // namespace sp

@@ -3,6 +3,7 @@
 // (the visualizer runs it one step ahead of the frame it draws).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "sim/step_plan.h"
 #include "sim/thread_pool.h"
 #include "soundpaint/simulation.h"
+#include "sp_ring.h"
 
 namespace sp {
 
@@ -28,7 +30,10 @@ inline constexpr std::size_t kCacheLine = 64;
 // index) only for whoever asks: the ring admits tens or hundreds of a
 // step's thousands (67 of 8,800 on the paper's workload), and merging all
 // of them on every step was ~0.09 ms of serial work in a 1.6 ms step
-// (bench/RESULTS.md sections 14 and 16).
+// (bench/RESULTS.md sections 14 and 16). The workers also count each
+// indicator's admission bin as they go, so that admitting the step is
+// a few passes over 2-byte bins on the calling thread rather than three
+// over the 80-byte indicators (another 0.09 ms, section 19).
 class CpuStepOutput {
  public:
   TraceCounters counters;  // summed over the workers
@@ -37,27 +42,33 @@ class CpuStepOutput {
   // Every indicator, in canonical order.
   std::vector<shader::Indicator> canonical() const;
   // admit(canonical(), quota, inverse_indicator_size), without merging the
-  // indicators the ring does not admit.
+  // indicators the ring does not admit; from the workers' bins when
+  // `inverse_indicator_size` is the one the step ran with.
   std::vector<shader::Indicator> admitted(std::uint32_t quota, float inverse_indicator_size) const;
 
  private:
   friend class CpuStepRunner;
   struct alignas(kCacheLine) Chunk {
     DefaultInitVector<shader::Indicator> list;
+    DefaultInitVector<std::uint16_t> bins;  // list[i]'s admission bin
+  };
+  static_assert(SP_ADMISSION_BINS <= 65536u, "a bin fits in Chunk::bins");
+  // One worker's count of the admission bins of the chunks it traced.
+  struct alignas(kCacheLine) BinCounts {
+    std::array<std::uint32_t, SP_ADMISSION_BINS> count;
   };
 
-  // Calls visit(indicator) for each indicator, chunk by chunk.
-  template <class Visit>
-  void for_each(Visit&& visit) const {
-    for (std::size_t c = 0; c < chunk_count_; ++c)
-      for (const shader::Indicator& ind : chunks_[c].list) visit(ind);
-  }
-  // The indicators that `keep` selects, in canonical order.
+  // Fills chunk c's bins and counts them into `counts`.
+  void count_bins(std::size_t c, float inverse_indicator_size, BinCounts& counts);
+  // The indicators that `keep(indicator, bin)` selects, in canonical order.
   template <class Keep>
   std::vector<shader::Indicator> canonical_where(Keep&& keep) const;
 
   std::vector<Chunk> chunks_;  // the first chunk_count_ hold this step's
   std::size_t chunk_count_ = 0;
+  std::vector<BinCounts> worker_bins_;  // per worker, summed into bins_ after the step
+  BinCounts bins_{};
+  float binned_inverse_size_ = 0.0f;  // what the workers binned with; admitted() with another bins anew
 };
 
 class CpuStepRunner {
@@ -72,8 +83,12 @@ class CpuStepRunner {
   // interaction) and chunks hold fixed ranges of rays. `bvh`,
   // `layers` and `plan` must not change during the call. With `embree`
   // (built over `bvh`), rays cast to the nearest surface through it.
+  // Indicators are binned for the ring's admission with
+  // `inverse_indicator_size` (the ring's; indicator_ring.h), which
+  // CpuStepOutput::admitted then takes as given.
   void run(const Bvh& bvh, std::span<const shader::LayerAcoustics> layers, const StepPlan& plan,
-           const shader::SimParams& params, CpuStepOutput& out, const EmbreeTraversal* embree = nullptr);
+           const shader::SimParams& params, float inverse_indicator_size, CpuStepOutput& out,
+           const EmbreeTraversal* embree = nullptr);
 
  private:
   struct alignas(kCacheLine) WorkerCounters {

@@ -34,37 +34,61 @@ float inverse_indicator_size(const Config& config);
 // Which of a step's indicators the ring admits: the GPU's admit.comp, phase
 // by phase. Each indicator's fate follows from histograms over the whole
 // step and from the indicator alone, so the step's indicators may be
-// visited in any order: those of the CPU backend's chunks, unmerged.
+// visited in any order: those of the CPU backend's chunks, unmerged, whose
+// admission bins the workers count as they trace (CpuStepOutput).
+//
+// The phases: count every indicator's bin (admission_bin) into bins(), then
+// plan_bins(); count the tie-break bin of each indicator in_tiebreak_bin(),
+// then plan_tiebreaks(); then ask admits(). A plan that admits_all() needs
+// none of it.
 class AdmissionPlan {
  public:
+  AdmissionPlan(std::size_t count, std::uint32_t quota, float inverse_indicator_size)
+      : quota_(quota), inverse_size_(inverse_indicator_size), all_(count <= quota) {}
+
   // `for_each(f)` calls f(const shader::Indicator&) once for each of the
-  // step's `count` indicators, in any order; it is called twice at most.
+  // step's `count` indicators, in any order; it is called twice.
   template <class ForEach>
   AdmissionPlan(ForEach&& for_each, std::size_t count, std::uint32_t quota, float inverse_indicator_size)
-      : inverse_size_(inverse_indicator_size), all_(count <= quota) {
+      : AdmissionPlan(count, quota, inverse_indicator_size) {
     if (all_) return;
-    std::uint32_t* histogram = buffer_.data();
-    for_each([&](const shader::Indicator& ind) { histogram[shader::sp_admission_bin(ind, inverse_size_)] += 1; });
-    shader::sp_plan_admission(histogram, quota);
-    std::fill_n(histogram, SP_ADMISSION_BINS, 0u);
+    std::uint32_t* histogram = bins();
+    for_each([&](const shader::Indicator& ind) { histogram[bin(ind)] += 1; });
+    plan_bins();
     for_each([&](const shader::Indicator& ind) {
-      if (shader::sp_in_tiebreak_bin(histogram, shader::sp_admission_bin(ind, inverse_size_)))
-        histogram[shader::sp_admission_tiebreak(ind)] += 1;
+      if (in_tiebreak_bin(bin(ind))) count_tiebreak(ind);
     });
-    shader::sp_plan_tiebreak(histogram, SP_ADMISSION_CLASSES);
+    plan_tiebreaks();
   }
 
-  // Whether the ring admits `ind`, one of the step's indicators. Its
-  // tie-break bin, a hash, matters only in its class's overflowing bin.
-  bool admits(const shader::Indicator& ind) const {
+  bool admits_all() const { return all_; }
+  std::uint32_t bin(const shader::Indicator& ind) const { return shader::sp_admission_bin(ind, inverse_size_); }
+
+  // The histogram of admission bins, zero until counted.
+  std::uint32_t* bins() { return buffer_.data(); }
+  void plan_bins() {
+    shader::sp_plan_admission(buffer_.data(), quota_);
+    std::fill_n(buffer_.data(), SP_ADMISSION_BINS, 0u);
+  }
+  // After plan_bins(): whether indicators of admission bin `bin` need their
+  // tie-break bin counted, and decided by it.
+  bool in_tiebreak_bin(std::uint32_t bin) const { return shader::sp_in_tiebreak_bin(buffer_.data(), bin); }
+  void count_tiebreak(const shader::Indicator& ind) { buffer_[shader::sp_admission_tiebreak(ind)] += 1; }
+  void plan_tiebreaks() { shader::sp_plan_tiebreak(buffer_.data(), SP_ADMISSION_CLASSES); }
+
+  // Whether the ring admits `ind`, one of the step's indicators, whose
+  // admission bin is `bin`. Its tie-break bin, a hash, matters only in its
+  // class's overflowing bin.
+  bool admits(std::uint32_t bin, const shader::Indicator& ind) const {
     if (all_) return true;
-    const std::uint32_t bin = shader::sp_admission_bin(ind, inverse_size_);
-    const bool tie = shader::sp_in_tiebreak_bin(buffer_.data(), bin);
+    const bool tie = in_tiebreak_bin(bin);
     return shader::sp_admitted(buffer_.data(), bin, tie ? shader::sp_admission_tiebreak(ind) : 0u);
   }
+  bool admits(const shader::Indicator& ind) const { return all_ || admits(bin(ind), ind); }
 
  private:
   std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer_{};  // histogram, then the plan
+  std::uint32_t quota_;
   float inverse_size_;
   bool all_;  // the whole step fits in the quota
 };
