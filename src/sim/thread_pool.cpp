@@ -3,7 +3,35 @@
 #include <algorithm>
 #include <utility>
 
+#if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
+#include <immintrin.h>
+#endif
+
 namespace sp {
+namespace {
+
+// Tells the core that this thread spins: on x86 `pause` lets a sibling
+// hyper-thread run and leaves the loop without a memory-order flush.
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
+  _mm_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+
+// Spins until ready() or kSpinWait has passed; returns ready().
+template <class Ready>
+bool spin_until(Ready&& ready) {
+  const auto deadline = std::chrono::steady_clock::now() + kSpinWait;
+  for (unsigned i = 1;; ++i) {
+    if (ready()) return true;
+    cpu_relax();
+    if (i % 64u == 0u && std::chrono::steady_clock::now() >= deadline) return ready();
+  }
+}
+
+}  // namespace
 
 ThreadPool::ThreadPool(unsigned threads) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -40,6 +68,10 @@ void ThreadPool::run_chunks(unsigned worker) {
 void ThreadPool::worker_loop(unsigned worker) {
   std::uint64_t seen = 0;
   for (;;) {
+    // Steps that follow each other closely find the worker awake.
+    spin_until([&] {
+      return generation_.load(std::memory_order_relaxed) != seen || stopping_.load(std::memory_order_relaxed);
+    });
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
@@ -74,7 +106,9 @@ void ThreadPool::parallel_for(std::size_t count, std::size_t grain, const Body& 
   wake_.notify_all();
   run_chunks(0);
   // Every worker is waited for even when this thread's chunk failed: they
-  // still use `body`, which lives in the caller's frame.
+  // still use `body`, which lives in the caller's frame. The last worker
+  // is usually within one chunk of done: spin rather than sleep first.
+  spin_until([&] { return busy_workers_.load(std::memory_order_relaxed) == 0; });
   std::unique_lock lock(mutex_);
   done_.wait(lock, [&] { return busy_workers_ == 0; });
   body_ = nullptr;

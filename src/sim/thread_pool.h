@@ -1,8 +1,16 @@
 // A fork-join pool for the CPU backend: one parallel_for per step, the
 // calling thread working alongside the workers.
+//
+// Waits spin for a short while (kSpinWait) before they sleep. On the
+// 2-vCPU VM of bench/RESULTS.md, a thread asleep on a condition variable
+// ran again 40-50 us after it was notified, in a paper-workload step of
+// about 1.1 ms: the caller, done with its chunks, slept through the
+// worker's last one and then that long again; a worker slept through the
+// start of the next step (section 19).
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -12,6 +20,9 @@
 #include <vector>
 
 namespace sp {
+
+// How long a thread that waits for the others spins before it sleeps.
+inline constexpr std::chrono::microseconds kSpinWait{50};
 
 class ThreadPool {
  public:
@@ -43,9 +54,10 @@ class ThreadPool {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_;
-  std::uint64_t generation_ = 0;
-  unsigned busy_workers_ = 0;
-  bool stopping_ = false;
+  // Written under mutex_; atomic so that a spinning thread may read them.
+  std::atomic<std::uint64_t> generation_{0};
+  std::atomic<unsigned> busy_workers_{0};
+  std::atomic<bool> stopping_{false};
 
   const Body* body_ = nullptr;
   std::size_t count_ = 0;
