@@ -83,21 +83,14 @@ void CpuStepOutput::count_bins(std::size_t c, float inverse_indicator_size, BinC
 }
 
 // Chunks hold rays in ascending order and each ray's indicators in ascending
-// iteration; a stable counting sort by iteration then yields (iteration, ray)
-// order, whatever thread ran which chunk. `keep` runs once per indicator.
-template <class Keep>
-std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const {
-  std::vector<const shader::Indicator*> kept;
+// iteration; a stable counting sort by iteration of indicators listed in
+// chunk order then yields (iteration, ray) order, whatever thread ran which
+// chunk.
+std::vector<shader::Indicator> CpuStepOutput::canonical_order(std::span<const shader::Indicator* const> kept) {
   std::vector<std::size_t> offsets;  // per iteration + 1: how many kept, then where the next goes
-  for (std::size_t c = 0; c < chunk_count_; ++c) {
-    const Chunk& chunk = chunks_[c];
-    for (std::size_t i = 0; i < chunk.list.size(); ++i) {
-      const shader::Indicator& ind = chunk.list[i];
-      if (!keep(ind, chunk.bins[i])) continue;
-      kept.push_back(&ind);
-      if (offsets.size() < ind.iteration + 2u) offsets.resize(ind.iteration + 2u, 0u);
-      offsets[ind.iteration + 1u] += 1u;
-    }
+  for (const shader::Indicator* ind : kept) {
+    if (offsets.size() < ind->iteration + 2u) offsets.resize(ind->iteration + 2u, 0u);
+    offsets[ind->iteration + 1u] += 1u;
   }
   for (std::size_t k = 1; k < offsets.size(); ++k) offsets[k] += offsets[k - 1u];
   std::vector<shader::Indicator> out(kept.size());
@@ -105,8 +98,17 @@ std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const
   return out;
 }
 
+template <class Keep>
+std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const {
+  std::vector<const shader::Indicator*> kept;
+  for (std::size_t c = 0; c < chunk_count_; ++c)
+    for (const shader::Indicator& ind : chunks_[c].list)
+      if (keep(ind)) kept.push_back(&ind);
+  return canonical_order(kept);
+}
+
 std::vector<shader::Indicator> CpuStepOutput::canonical() const {
-  return canonical_where([](const shader::Indicator&, std::uint32_t) { return true; });
+  return canonical_where([](const shader::Indicator&) { return true; });
 }
 
 std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, float inverse_indicator_size) const {
@@ -118,19 +120,32 @@ std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, floa
             for (const shader::Indicator& ind : chunks_[c].list) visit(ind);
         },
         indicator_count(), quota, inverse_indicator_size);
-    return canonical_where([&](const shader::Indicator& ind, std::uint32_t) { return plan.admits(ind); });
+    return canonical_where([&](const shader::Indicator& ind) { return plan.admits(ind); });
   }
   AdmissionPlan plan(indicator_count(), quota, inverse_indicator_size);
   if (plan.admits_all()) return canonical();
   std::copy(bins_.count.begin(), bins_.count.end(), plan.bins());
   plan.plan_bins();
+  // One pass over the bins finds the few that may be admitted (in chunk
+  // order); their tie-breaks are counted and decided among them alone.
+  struct Candidate {
+    const shader::Indicator* indicator;
+    std::uint32_t bin;
+  };
+  std::vector<Candidate> candidates;
+  candidates.reserve(std::size_t{2} * quota);
   for (std::size_t c = 0; c < chunk_count_; ++c) {
     const Chunk& chunk = chunks_[c];
     for (std::size_t i = 0; i < chunk.list.size(); ++i)
-      if (plan.in_tiebreak_bin(chunk.bins[i])) plan.count_tiebreak(chunk.list[i]);
+      if (plan.may_admit(chunk.bins[i])) candidates.push_back(Candidate{&chunk.list[i], chunk.bins[i]});
   }
+  for (const Candidate& candidate : candidates)
+    if (plan.in_tiebreak_bin(candidate.bin)) plan.count_tiebreak(*candidate.indicator);
   plan.plan_tiebreaks();
-  return canonical_where([&](const shader::Indicator& ind, std::uint32_t bin) { return plan.admits(bin, ind); });
+  std::vector<const shader::Indicator*> kept;
+  for (const Candidate& candidate : candidates)
+    if (plan.admits(candidate.bin, *candidate.indicator)) kept.push_back(candidate.indicator);
+  return canonical_order(kept);
 }
 
 }  // namespace sp

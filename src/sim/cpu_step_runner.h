@@ -60,9 +60,11 @@ class CpuStepOutput {
 
   // Fills chunk c's bins and counts them into `counts`.
   void count_bins(std::size_t c, float inverse_indicator_size, BinCounts& counts);
-  // The indicators that `keep(indicator, bin)` selects, in canonical order.
+  // The indicators that `keep(indicator)` selects, in canonical order.
   template <class Keep>
   std::vector<shader::Indicator> canonical_where(Keep&& keep) const;
+  // Copies of `kept`, indicators listed in chunk order, in canonical order.
+  static std::vector<shader::Indicator> canonical_order(std::span<const shader::Indicator* const> kept);
 
   std::vector<Chunk> chunks_;  // the first chunk_count_ hold this step's
   std::size_t chunk_count_ = 0;

@@ -70,6 +70,11 @@ class AdmissionPlan {
     shader::sp_plan_admission(buffer_.data(), quota_);
     std::fill_n(buffer_.data(), SP_ADMISSION_BINS, 0u);
   }
+  // After plan_bins(): whether indicators of admission bin `bin` may be
+  // admitted, at or above their class's overflowing bin; those below never are.
+  bool may_admit(std::uint32_t bin) const {
+    return bin + 1u >= buffer_[SP_ADMISSION_PLAN_THRESHOLD + bin / SP_ADMISSION_LEVELS];
+  }
   // After plan_bins(): whether indicators of admission bin `bin` need their
   // tie-break bin counted, and decided by it.
   bool in_tiebreak_bin(std::uint32_t bin) const { return shader::sp_in_tiebreak_bin(buffer_.data(), bin); }
