@@ -306,6 +306,30 @@ TEST(WideBvh, RoomsMatchBinary) {
   EXPECT_GT(a.hits, 45000u);
 }
 
+// Direction components at and around the slab test's 1e-20 guard, of
+// either sign, and -0: the walk derives inverse directions, the parallel
+// axes and the planes it tests first from them, as sp_make_query does.
+TEST(WideBvh, TinyDirectionComponentsMatchBinary) {
+  Soup soup = make_rooms(2, 2, 1, 2);
+  sp::Bvh bvh = soup.build();
+  const float tiny[] = {0.0f, -0.0f, 1e-25f, -1e-25f, 1e-20f, -1e-20f, 2e-20f, -2e-20f};
+  std::vector<Ray> rays = rays_along_planes(soup, 8000, 41);
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int> pick(0, 7), axis(0, 2);
+  for (Ray& r : rays) {
+    for (int a = 0; a < 3; ++a)
+      if (r.dir[a] == 0.0f) r.dir[a] = tiny[pick(rng)];
+    if (rng() % 2u == 0u) r.dir[axis(rng)] = tiny[pick(rng)];  // one more, wherever it was
+  }
+  rays.erase(std::remove_if(rays.begin(), rays.end(),
+                            [](const Ray& r) {
+                              return std::max({std::abs(r.dir.x), std::abs(r.dir.y), std::abs(r.dir.z)}) < 0.1f;
+                            }),
+             rays.end());
+  Agreement a = expect_same_as_binary(bvh, rays);
+  EXPECT_GT(a.hits, 4000u);
+}
+
 TEST(WideBvh, ClosedShapesMatchBinary) {
   Soup box;
   add_box(box, vec3(-2.0f, -1.0f, 0.5f), vec3(3.0f, 1.7f, 4.0f), 8);
