@@ -297,6 +297,28 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
             << "quota " << quota << ", inverse size " << inverse_size << ", admitted indicator " << i;
     }
   }
+
+  // The same output reused for a smaller step (fewer chunks than before)
+  // holds that step's indicators and bins alone.
+  StepPlan small = plan;
+  small.total_rays = 300;
+  std::uint32_t first = 0;
+  for (shader::StepSource& source : small.sources) {
+    source.first_ray = first;
+    source.ray_count = std::min(source.ray_count, small.total_rays - first);
+    first += source.ray_count;
+  }
+  runner.run(world.geometry->bvh, make_layer_table(world), small, make_sim_params(config, 1), 1.0f, out);
+  const std::vector<shader::Indicator> fewer = out.canonical();
+  ASSERT_EQ(fewer.size(), out.indicator_count());
+  ASSERT_LT(fewer.size(), all.size());
+  for (std::uint32_t quota : {1u, 50u, static_cast<std::uint32_t>(fewer.size() / 2u)}) {
+    const std::vector<shader::Indicator> expected = admit(fewer, quota, 1.0f);
+    const std::vector<shader::Indicator> admitted = out.admitted(quota, 1.0f);
+    ASSERT_EQ(admitted.size(), expected.size()) << "smaller step, quota " << quota;
+    for (std::size_t i = 0; i < admitted.size(); ++i)
+      ASSERT_TRUE(same(admitted[i], expected[i])) << "smaller step, quota " << quota << ", admitted indicator " << i;
+  }
 }
 
 TEST(Simulation, RingQuotaTurnsTheRingOverOncePerLifetime) {

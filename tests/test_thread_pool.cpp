@@ -8,6 +8,7 @@
 #include <new>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "sim/thread_pool.h"
@@ -68,6 +69,23 @@ TEST(ThreadPool, SingleThreadRunsOnTheCallerAndThrowsThere) {
   EXPECT_THROW(pool.parallel_for(10, 1, [](std::size_t, std::size_t, unsigned) { throw std::logic_error("x"); }),
                std::logic_error);
   EXPECT_EQ(sum_of_indices(pool, 50), 50ull * 49 / 2);
+}
+
+// Calls that follow each other closely find the workers spinning rather
+// than asleep (kSpinWait); calls after a pause find them asleep. Both must
+// visit every item once, and a pool destroyed while its workers spin, or
+// right after it was made, must stop them.
+TEST(ThreadPool, BackToBackCallsAndPausesAndQuickDestruction) {
+  {
+    sp::ThreadPool pool(3);
+    for (std::size_t call = 0; call < 2000; ++call)
+      ASSERT_EQ(sum_of_indices(pool, 64 + call % 50), (64 + call % 50) * (63 + call % 50) / 2) << "call " << call;
+    for (int call = 0; call < 3; ++call) {
+      std::this_thread::sleep_for(2 * sp::kSpinWait);
+      ASSERT_EQ(sum_of_indices(pool, 500), 500ull * 499 / 2);
+    }
+  }                                                     // destroyed while its workers spin after the last call
+  for (int i = 0; i < 50; ++i) sp::ThreadPool pool(4);  // destroyed before its workers ever ran
 }
 
 }  // namespace

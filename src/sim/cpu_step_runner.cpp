@@ -34,8 +34,8 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   out.chunk_count_ = chunks;
   for (std::size_t c = 0; c < chunks; ++c) out.chunks_[c].list.clear();
   out.worker_bins_.resize(pool_.size());
-  for (CpuStepOutput::BinCounts& counts : out.worker_bins_) counts.count.fill(0u);
-  out.binned_inverse_size_ = inverse_indicator_size;
+  for (CpuStepOutput::WorkerBins& worker : out.worker_bins_) worker.count.fill(0u);
+  out.binned_ = false;  // until every chunk is binned: a throwing step leaves lists and bins unmatched
   for (WorkerCounters& worker : worker_counters_) {
     worker.counters.casts = 0;
     std::fill(worker.counters.layers.begin(), worker.counters.layers.end(), LayerCounters{});
@@ -51,12 +51,14 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
                                                  static_cast<std::uint32_t>(i), params.seed, params.step);
       trace_ray(context, ray, indicators, worker_counters_[worker].counters);
     }
-    out.count_bins(chunk, inverse_indicator_size, out.worker_bins_[worker]);
+    out.count_bins(chunk, inverse_indicator_size, out.worker_bins_[worker].count);
   });
 
-  out.bins_.count.fill(0u);
-  for (const CpuStepOutput::BinCounts& counts : out.worker_bins_)
-    for (std::size_t b = 0; b < SP_ADMISSION_BINS; ++b) out.bins_.count[b] += counts.count[b];
+  out.bins_.fill(0u);
+  for (const CpuStepOutput::WorkerBins& worker : out.worker_bins_)
+    for (std::size_t b = 0; b < SP_ADMISSION_BINS; ++b) out.bins_[b] += worker.count[b];
+  out.binned_ = true;
+  out.binned_inverse_size_ = inverse_indicator_size;
 
   out.counters.casts = 0;
   out.counters.layers.assign(layer_count_, LayerCounters{});
@@ -78,7 +80,7 @@ void CpuStepOutput::count_bins(std::size_t c, float inverse_indicator_size, BinC
   for (std::size_t i = 0; i < chunk.list.size(); ++i) {
     const std::uint32_t bin = shader::sp_admission_bin(chunk.list[i], inverse_indicator_size);
     chunk.bins[i] = static_cast<std::uint16_t>(bin);
-    counts.count[bin] += 1u;
+    counts[bin] += 1u;
   }
 }
 
@@ -112,8 +114,9 @@ std::vector<shader::Indicator> CpuStepOutput::canonical() const {
 }
 
 std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, float inverse_indicator_size) const {
-  if (std::bit_cast<std::uint32_t>(inverse_indicator_size) != std::bit_cast<std::uint32_t>(binned_inverse_size_)) {
-    // Not the size the workers binned with: every indicator's bin anew.
+  if (!binned_ ||
+      std::bit_cast<std::uint32_t>(inverse_indicator_size) != std::bit_cast<std::uint32_t>(binned_inverse_size_)) {
+    // Not binned, or not with this size: every indicator's bin anew.
     const AdmissionPlan plan(
         [&](auto&& visit) {
           for (std::size_t c = 0; c < chunk_count_; ++c)
@@ -124,7 +127,7 @@ std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, floa
   }
   AdmissionPlan plan(indicator_count(), quota, inverse_indicator_size);
   if (plan.admits_all()) return canonical();
-  std::copy(bins_.count.begin(), bins_.count.end(), plan.bins());
+  std::copy(bins_.begin(), bins_.end(), plan.bins());
   plan.plan_bins();
   // One pass over the bins finds the few that may be admitted (in chunk
   // order); their tie-breaks are counted and decided among them alone.
@@ -133,7 +136,7 @@ std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, floa
     std::uint32_t bin;
   };
   std::vector<Candidate> candidates;
-  candidates.reserve(std::size_t{2} * quota);
+  candidates.reserve(std::min(std::size_t{2} * quota, indicator_count()));
   for (std::size_t c = 0; c < chunk_count_; ++c) {
     const Chunk& chunk = chunks_[c];
     for (std::size_t i = 0; i < chunk.list.size(); ++i)

@@ -32,8 +32,8 @@ inline constexpr std::size_t kCacheLine = 64;
 // of them on every step was ~0.09 ms of serial work in a 1.6 ms step
 // (bench/RESULTS.md sections 14 and 16). The workers also count each
 // indicator's admission bin as they go, so that admitting the step is
-// a few passes over 2-byte bins on the calling thread rather than three
-// over the 80-byte indicators (another 0.09 ms, section 19).
+// a pass over 2-byte bins on the calling thread rather than three over
+// the 96-byte indicators (another 0.09 ms, section 19).
 class CpuStepOutput {
  public:
   TraceCounters counters;  // summed over the workers
@@ -53,9 +53,10 @@ class CpuStepOutput {
     DefaultInitVector<std::uint16_t> bins;  // list[i]'s admission bin
   };
   static_assert(SP_ADMISSION_BINS <= 65536u, "a bin fits in Chunk::bins");
+  using BinCounts = std::array<std::uint32_t, SP_ADMISSION_BINS>;
   // One worker's count of the admission bins of the chunks it traced.
-  struct alignas(kCacheLine) BinCounts {
-    std::array<std::uint32_t, SP_ADMISSION_BINS> count;
+  struct alignas(kCacheLine) WorkerBins {
+    BinCounts count;
   };
 
   // Fills chunk c's bins and counts them into `counts`.
@@ -68,9 +69,13 @@ class CpuStepOutput {
 
   std::vector<Chunk> chunks_;  // the first chunk_count_ hold this step's
   std::size_t chunk_count_ = 0;
-  std::vector<BinCounts> worker_bins_;  // per worker, summed into bins_ after the step
+  std::vector<WorkerBins> worker_bins_;  // per worker, summed into bins_ after the step
   BinCounts bins_{};
-  float binned_inverse_size_ = 0.0f;  // what the workers binned with; admitted() with another bins anew
+  // Whether the chunks' bins and bins_ hold this step's, binned with
+  // binned_inverse_size_ (not after a step that threw); otherwise, or asked
+  // with another size, admitted() bins anew.
+  bool binned_ = false;
+  float binned_inverse_size_ = 0.0f;
 };
 
 class CpuStepRunner {

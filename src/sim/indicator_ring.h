@@ -47,7 +47,7 @@ class AdmissionPlan {
       : quota_(quota), inverse_size_(inverse_indicator_size), all_(count <= quota) {}
 
   // `for_each(f)` calls f(const shader::Indicator&) once for each of the
-  // step's `count` indicators, in any order; it is called twice.
+  // step's `count` indicators, in any order; it is called twice at most.
   template <class ForEach>
   AdmissionPlan(ForEach&& for_each, std::size_t count, std::uint32_t quota, float inverse_indicator_size)
       : AdmissionPlan(count, quota, inverse_indicator_size) {

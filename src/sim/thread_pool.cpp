@@ -5,6 +5,8 @@
 
 #if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
 #include <immintrin.h>
+#elif defined(_M_ARM64) || defined(_M_ARM)
+#include <intrin.h>
 #endif
 
 namespace sp {
@@ -15,7 +17,9 @@ namespace {
 inline void cpu_relax() {
 #if defined(__x86_64__) || defined(_M_X64) || defined(__i386__) || defined(_M_IX86)
   _mm_pause();
-#elif defined(__aarch64__)
+#elif defined(_M_ARM64) || defined(_M_ARM)
+  __yield();
+#elif defined(__aarch64__) || (defined(__arm__) && defined(__ARM_ARCH) && __ARM_ARCH >= 7)
   asm volatile("yield");
 #endif
 }

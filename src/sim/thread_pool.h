@@ -6,7 +6,9 @@
 // ran again 40-50 us after it was notified, in a paper-workload step of
 // about 1.1 ms: the caller, done with its chunks, slept through the
 // worker's last one and then that long again; a worker slept through the
-// start of the next step (section 19).
+// start of the next step (section 19). The price: after each call every
+// worker keeps one core busy for up to kSpinWait, time a host's other
+// threads (its render thread, say) do not get on a small machine.
 #pragma once
 
 #include <atomic>
