@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "capi/capi_internal.h"
-#include "draw/display_frame.h"
+#include "embed/viewport_check.h"
 
 namespace sp::capi {
 namespace {
@@ -149,23 +149,10 @@ DrawOptions draw_options_from(const sp_draw_options& in, const char* function) {
                     std::to_string(extent.height) + ")");
     }
   }
-  const std::uint32_t limit = draw::kMaxViewportPixels;
-  if (in.viewport_width > limit || in.viewport_height > limit)
-    bad_field(function, o, "viewport_width", "and viewport_height must be at most " + std::to_string(limit));
-  if (in.viewport_x > limit || in.viewport_y > limit)
-    bad_field(function, o, "viewport_x", "and viewport_y must be at most " + std::to_string(limit));
-  if (in.area != nullptr) {
-    const VkRect2D& area = *in.area;
-    if (area.offset.x < 0 || area.offset.y < 0) bad_field(function, o, "area", "offset must not be negative");
-    if (std::uint32_t(area.offset.x) > limit || std::uint32_t(area.offset.y) > limit || area.extent.width > limit ||
-        area.extent.height > limit)
-      bad_field(function, o, "area", "offset and extent must be at most " + std::to_string(limit));
-  }
   out.viewport_x = in.viewport_x;
   out.viewport_y = in.viewport_y;
-  if (in.area != nullptr && (in.viewport_x != 0 || in.viewport_y != 0) &&
-      (std::int64_t(in.viewport_x) != in.area->offset.x || std::int64_t(in.viewport_y) != in.area->offset.y))
-    bad_field(function, o, "viewport_x", "and viewport_y must be 0 or the area's offset");
+  if (const std::optional<embed::FieldProblem> problem = embed::viewport_problem(out))
+    bad_field(function, o, problem->field, problem->what);
   if (in.scene_depth < -1) bad_field(function, o, "scene_depth", "must be -1 (none) or a registered view's index");
   out.scene_depth = in.scene_depth;
   return out;

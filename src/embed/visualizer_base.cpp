@@ -6,6 +6,7 @@
 
 #include "core/finite.h"
 #include "draw/display_sources.h"
+#include "embed/viewport_check.h"
 #include "sp_types.h"
 
 namespace sp::embed {
@@ -47,19 +48,10 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, 
   const VkRect2D* area = options.area;
   if (area != nullptr && (area->extent.width == 0 || area->extent.height == 0))
     return invalid("record_draw: the area is empty");
-  if (area != nullptr && (area->offset.x < 0 || area->offset.y < 0))
-    return invalid("record_draw: the area's offset must not be negative");
-  if (area != nullptr && (options.viewport_x != 0 || options.viewport_y != 0) &&
-      (options.viewport_x != std::uint32_t(area->offset.x) || options.viewport_y != std::uint32_t(area->offset.y)))
-    return invalid("record_draw: viewport_x and viewport_y must be 0 or the area's offset");
+  if (const std::optional<embed::FieldProblem> problem = embed::viewport_problem(options))
+    return invalid("record_draw: " + problem->field + " " + problem->what);
   const std::uint32_t origin_x = area != nullptr ? std::uint32_t(area->offset.x) : options.viewport_x;
   const std::uint32_t origin_y = area != nullptr ? std::uint32_t(area->offset.y) : options.viewport_y;
-  const std::uint32_t limit = draw::kMaxViewportPixels;
-  if (options.viewport_width > limit || options.viewport_height > limit ||
-      (area != nullptr && (area->extent.width > limit || area->extent.height > limit)))
-    return invalid("record_draw: the viewport's size must be at most " + std::to_string(limit) + " pixels a side");
-  if (origin_x > limit || origin_y > limit)
-    return invalid("record_draw: viewport_x and viewport_y must be at most " + std::to_string(limit));
   if (options.scene_depth >= 0 && static_cast<std::size_t>(options.scene_depth) >= scene_depths_.size())
     return invalid("record_draw: scene_depth " + std::to_string(options.scene_depth) + " is not a registered view (" +
                    std::to_string(scene_depths_.size()) + " registered with set_scene_depth)");
