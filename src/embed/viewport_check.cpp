@@ -11,8 +11,8 @@ std::optional<FieldProblem> viewport_problem(const DrawOptions& options) {
   const std::string at_most = "must be at most " + std::to_string(limit);
   if (const VkRect2D* area = options.area) {
     if (area->offset.x < 0 || area->offset.y < 0) return FieldProblem{"area", "offset must not be negative"};
-    if (std::uint32_t(area->offset.x) > limit || std::uint32_t(area->offset.y) > limit ||
-        area->extent.width > limit || area->extent.height > limit)
+    if (std::uint32_t(area->offset.x) > limit || std::uint32_t(area->offset.y) > limit || area->extent.width > limit ||
+        area->extent.height > limit)
       return FieldProblem{"area", "offset and extent " + at_most + " pixels a side"};
   }
   if (options.viewport_width > limit || options.viewport_height > limit)
