@@ -264,6 +264,38 @@ SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parall
   return lane_mask(tnear <= tfar * splat(kBoxMargin));
 }
 
+// Keeps the compiler from turning a branch into conditional moves
+// (predicted_slot). MSVC has no inline assembly on x64; its build may merge
+// the branches, which changes the speed, not the answer.
+#if defined(__GNUC__) || defined(__clang__)
+#define SP_KEEP_BRANCH() asm volatile("")
+#else
+#define SP_KEEP_BRANCH() ((void)0)
+#endif
+
+// node.slot[lane] for the lane set in one-hot mask `lane_bit`, chosen by
+// branches rather than read at a computed index. The branch predictor then
+// guesses the next node, and the core starts loading it while this node's
+// boxes are still being tested; an indexed read waits for the test, and in
+// a tree that the caches hold that wait was the walk's longest
+// (bench/RESULTS.md section 20). Where the guess is wrong the core discards
+// the loads: the answer is the same either way.
+SP_ALWAYS_INLINE WideSlot predicted_slot(const WideNode& node, unsigned lane_bit) {
+  if (lane_bit == 1u) {
+    SP_KEEP_BRANCH();
+    return node.slot[0];
+  }
+  if (lane_bit == 2u) {
+    SP_KEEP_BRANCH();
+    return node.slot[1];
+  }
+  if (lane_bit == 4u) {
+    SP_KEEP_BRANCH();
+    return node.slot[2];
+  }
+  return node.slot[3];
+}
+
 // Which of slots 0-1 and 2-3 the binary traversal enters first when both
 // hold hits: the children of the nearer of their two parents, the left on a
 // tie. A parent's box is the union of its children's (build_bvh's bounds are
@@ -393,7 +425,7 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
       const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.limit(), tnear);
       if (hits != 0u) {
         if ((hits & (hits - 1u)) == 0u) {  // one hit, the common case
-          item = node.slot[std::countr_zero(hits)];
+          item = predicted_slot(node, hits);
           continue;
         }
         // Push in reverse order of the binary walk, so that it pops in order:
@@ -418,9 +450,10 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
         if (in_first == 3u) {
           const std::uint32_t s = nearer(first);
           push(s ^ 1u);
-          item = node.slot[s];
+          item = predicted_slot(node, 1u << s);
         } else {
-          item = node.slot[first + (in_first >> 1u)];
+          const std::uint32_t s = first + (in_first >> 1u);
+          item = predicted_slot(node, 1u << s);
         }
         continue;
       }
