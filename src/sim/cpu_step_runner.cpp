@@ -103,9 +103,9 @@ std::vector<shader::Indicator> CpuStepOutput::canonical_order(std::span<const sh
 template <class Keep>
 std::vector<shader::Indicator> CpuStepOutput::canonical_where(Keep&& keep) const {
   std::vector<const shader::Indicator*> kept;
-  for (std::size_t c = 0; c < chunk_count_; ++c)
-    for (const shader::Indicator& ind : chunks_[c].list)
-      if (keep(ind)) kept.push_back(&ind);
+  for_each([&](const shader::Indicator& ind) {
+    if (keep(ind)) kept.push_back(&ind);
+  });
   return canonical_order(kept);
 }
 
@@ -117,12 +117,7 @@ std::vector<shader::Indicator> CpuStepOutput::admitted(std::uint32_t quota, floa
   if (!binned_ ||
       std::bit_cast<std::uint32_t>(inverse_indicator_size) != std::bit_cast<std::uint32_t>(binned_inverse_size_)) {
     // Not binned, or not with this size: every indicator's bin anew.
-    const AdmissionPlan plan(
-        [&](auto&& visit) {
-          for (std::size_t c = 0; c < chunk_count_; ++c)
-            for (const shader::Indicator& ind : chunks_[c].list) visit(ind);
-        },
-        indicator_count(), quota, inverse_indicator_size);
+    const AdmissionPlan plan([&](auto&& visit) { for_each(visit); }, indicator_count(), quota, inverse_indicator_size);
     return canonical_where([&](const shader::Indicator& ind) { return plan.admits(ind); });
   }
   AdmissionPlan plan(indicator_count(), quota, inverse_indicator_size);

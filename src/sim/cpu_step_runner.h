@@ -59,6 +59,12 @@ class CpuStepOutput {
     BinCounts count;
   };
 
+  // Calls visit(indicator) for each indicator, chunk by chunk.
+  template <class Visit>
+  void for_each(Visit&& visit) const {
+    for (std::size_t c = 0; c < chunk_count_; ++c)
+      for (const shader::Indicator& ind : chunks_[c].list) visit(ind);
+  }
   // Fills chunk c's bins and counts them into `counts`.
   void count_bins(std::size_t c, float inverse_indicator_size, BinCounts& counts);
   // The indicators that `keep(indicator)` selects, in canonical order.
