@@ -48,7 +48,7 @@ using spbench::Json;
 constexpr const char* kUsage =
     "usage: bench_rays [--scenes SPEC,...] [--rays N] [--budget B] [--runs R] [--build-runs R] [--threads T]\n"
     "                  [--backends cpu,gpu|none] [--sim-steps N] [--sim-max-seconds S] [--pattern paper|burst|scene]\n"
-    "                  [--cpu-walk best|baseline|avx512] [--json OUT.json]\n"
+    "                  [--cpu-walk best|baseline|avx512] [--embree-accel NAME] [--json OUT.json]\n"
     "  --scenes      glTF files and gen:N generated levels of about N triangles\n"
     "                (default: scenes/level.gltf,gen:10000,gen:100000,gen:1000000)\n"
     "  --rays        emitted rays cast per pass (default 500000), gathered from steps at --budget rays (default 2500)\n"
@@ -56,7 +56,9 @@ constexpr const char* kUsage =
     "  --build-runs  BVH builds per builder after one warm-up build; medians (default 3)\n"
     "  --backends    simulation backends stepped on each scene for casts/s (default cpu,gpu; none skips)\n"
     "  --sim-steps   frames measured per backend (default 60, after 10 of warm-up)\n"
-    "  --cpu-walk    soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n";
+    "  --cpu-walk    soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
+    "  --embree-accel  the tree Embree builds (its tri_accel setting), e.g. bvh4.triangle4 to compare 4-wide\n"
+    "                nodes with ours (default: Embree's choice, bvh8.triangle4 on AVX2 and AVX-512 CPUs)\n";
 
 struct Options {
   std::vector<std::string> scenes = {SP_DEFAULT_SCENE, "gen:10000", "gen:100000", "gen:1000000"};
@@ -70,6 +72,7 @@ struct Options {
   spbench::Pattern pattern = spbench::Pattern::Paper;
   std::string json;
   std::string cpu_walk = "best";
+  std::string embree_accel;  // empty: Embree's default for this CPU
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -87,6 +90,7 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--sim-max-seconds") o.loop.max_seconds = cli.to_double(value, flag);
     else if (flag == "--json") o.json = value;
     else if (flag == "--cpu-walk") o.cpu_walk = value;
+    else if (flag == "--embree-accel") o.embree_accel = value;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else return false;
     return true;
@@ -177,7 +181,9 @@ int run(const CommandLine& cli, const Options& options) {
   std::printf("soundpaint CPU walk: %s\n", spbench::cpu_walk_name());
   std::printf("casting on %u threads; %u emitted rays per pass (budget %u per step), median of %u passes\n", threads,
               options.rays, options.budget, options.runs);
-  if (embree) std::printf("Embree %s\n", embree->c_str());
+  if (embree)
+    std::printf("Embree %s, tree %s\n", embree->c_str(),
+                options.embree_accel.empty() ? "Embree's default" : options.embree_accel.c_str());
   else std::printf("Embree not available: built without libembree-dev\n");
   const std::vector<EmbreeBuild> embree_builds = {
       {EmbreeQuality::Medium, threads, true}, {EmbreeQuality::High, threads, true}, {EmbreeQuality::Medium, 1, false}};
@@ -253,7 +259,8 @@ int run(const CommandLine& cli, const Options& options) {
       std::unique_ptr<spbench::EmbreeScene> tree;
       for (std::uint32_t r = 0; r <= options.build_runs; ++r) {  // run 0 warms up, as above
         tree.reset();
-        tree = std::make_unique<spbench::EmbreeScene>(vertices, config_e.quality, config_e.threads);
+        tree =
+            std::make_unique<spbench::EmbreeScene>(vertices, config_e.quality, config_e.threads, options.embree_accel);
         if (r > 0) ms.push_back(tree->build_ms());
       }
       const std::string name = std::string("embree ") + spbench::quality_name(config_e.quality);
@@ -331,6 +338,7 @@ int run(const CommandLine& cli, const Options& options) {
                      {"host", spbench::host_description()},
                      {"cpu_walk", spbench::cpu_walk_name()},
                      {"embree", embree ? Json(*embree) : Json(nullptr)},
+                     {"embree_accel", options.embree_accel.empty() ? Json(nullptr) : Json(options.embree_accel)},
                      {"settings",
                       {{"threads", threads},
                        {"rays", options.rays},

@@ -1,6 +1,7 @@
 #include "embree_cast.h"
 #include "sp_types.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #ifdef SP_HAVE_EMBREE
@@ -17,6 +18,18 @@ namespace spbench {
 const char* quality_name(EmbreeQuality quality) { return quality == EmbreeQuality::High ? "high" : "medium"; }
 
 #ifdef SP_HAVE_EMBREE
+
+namespace {
+
+// One word of Embree's configuration syntax, so that a name cannot add
+// settings of its own (they are separated by commas and '=').
+bool valid_accel_name(const std::string& accel) {
+  return std::all_of(accel.begin(), accel.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_';
+  });
+}
+
+}  // namespace
 
 std::optional<std::string> embree_version() { return std::string(RTC_VERSION_STRING); }
 
@@ -36,11 +49,14 @@ struct EmbreeScene::Impl {
   }
 };
 
-EmbreeScene::EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality quality, unsigned threads)
+EmbreeScene::EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality quality, unsigned threads,
+                         const std::string& accel)
     : impl_(std::make_unique<Impl>()) {
-  const std::string config = "threads=" + std::to_string(threads);
+  if (!valid_accel_name(accel)) throw std::runtime_error("Embree: \"" + accel + "\" is not an acceleration structure");
+  std::string config = "threads=" + std::to_string(threads);
+  if (!accel.empty()) config += ",tri_accel=" + accel;
   impl_->device = rtcNewDevice(config.c_str());
-  if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
+  if (!impl_->device) throw std::runtime_error("Embree: rtcNewDevice failed (configuration \"" + config + "\")");
   const RTCBuildQuality build_quality =
       quality == EmbreeQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
 
@@ -66,7 +82,7 @@ EmbreeScene::EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality qual
   const auto start = std::chrono::steady_clock::now();
   rtcCommitScene(impl_->scene);
   impl_->build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  impl_->check("building the scene");
+  impl_->check(accel.empty() ? "building the scene" : ("building the scene as " + accel).c_str());
 }
 
 EmbreeScene::~EmbreeScene() = default;
@@ -130,7 +146,7 @@ std::optional<std::string> embree_version() { return std::nullopt; }
 
 struct EmbreeScene::Impl {};
 
-EmbreeScene::EmbreeScene(std::span<const glm::vec3>, EmbreeQuality, unsigned) {
+EmbreeScene::EmbreeScene(std::span<const glm::vec3>, EmbreeQuality, unsigned, const std::string&) {
   throw std::runtime_error("Embree not available: built without libembree-dev");
 }
 EmbreeScene::~EmbreeScene() = default;

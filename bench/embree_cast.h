@@ -43,8 +43,13 @@ const char* quality_name(EmbreeQuality quality);
 class EmbreeScene {
  public:
   // Builds over `vertices` (3 per triangle) on a device limited to `threads`
-  // build threads. Throws std::runtime_error without Embree or on its errors.
-  EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality quality, unsigned threads);
+  // build threads. `accel`, when not empty, is Embree's tri_accel setting
+  // (which tree and leaves it builds, e.g. "bvh4.triangle4"; empty: Embree's
+  // own choice for this CPU). Throws std::runtime_error without Embree, for
+  // an accel name that is not one word of letters, digits and dots, or on
+  // Embree's errors.
+  EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality quality, unsigned threads,
+              const std::string& accel = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
