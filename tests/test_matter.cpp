@@ -178,6 +178,30 @@ TEST(Matter, TrimOnOpenRenderMeshFindsNoWayOut) {
   EXPECT_EQ(counters.layers[1].backcast_misses, 1u);  // wood: the entry face's layer
 }
 
+TEST(Matter, WallEnteredJustBelowTheCeilingOfARenderMeshRoomLetsNothingOut) {
+  // A render mesh's room: a box wound inward, matter everywhere outside it.
+  // The ray starts 0.01 mm under the ceiling and 0.4 mm from the wall
+  // x = -3, going down and out: it strikes the wall after 0.4 / 0.586 =
+  // 0.68 mm, 0.52 mm below the ceiling. Looking back 1 mm from there, the
+  // ceiling lies 0.69 mm behind, crossed from its back (the matter above)
+  // to its front: the far side of the corner, not a way out. Nothing lies
+  // ahead, so the ray is absorbed in the wall.
+  Fixture f;
+  add_box_faces(f.scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, "concrete", test::kAllFaces, test::kAllFaces);
+  f.config.layers["concrete"] = {0.0f, 1.0f};
+  f.finish();
+  const glm::vec3 dir = glm::normalize(glm::vec3(-0.586f, -0.754f, 0.298f));
+  const glm::vec3 origin(-3.0f + 0.0004f, 3.0f - 0.00001f, 1.98f);
+  TraceCounters counters;
+  auto ind = f.trace(origin, dir, counters);
+  ASSERT_EQ(ind.size(), 1u);
+  EXPECT_EQ(ind[0].kind, SP_INDICATOR_HIT);
+  EXPECT_NEAR(ind[0].position.x, -3.0f, 1e-6f);
+  EXPECT_NEAR(ind[0].position.y, 3.0f - 0.00001f - 0.0004f * 0.754f / 0.586f, 2e-6f);
+  EXPECT_EQ(counters.layers[0].penetrations, 1u);
+  EXPECT_EQ(counters.layers[0].backcast_misses, 1u);
+}
+
 TEST(Matter, FloorWithASecondSlabOverlappingIt) {
   // Floor y in [-0.2, 0] (alpha 1), slab y in [-0.35, -0.1] (alpha 2):
   // 0.1 * 1 + 0.1 * 2 + 0.15 * 2 = 0.6.
