@@ -174,6 +174,9 @@ std::vector<Ray> vary_windows(std::vector<Ray> rays, std::uint32_t seed) {
         r.tmin = -kInf;
         r.tmax = kInf;
         break;
+      case 6:  // the matter query's look-back
+        r.tmin = -SP_CONTACT_TOLERANCE;
+        break;
       default:
         break;
     }
@@ -281,6 +284,37 @@ TEST(WideBvh, RandomSoupMatchesBinary) {
     Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-12), vec3(12), 10000, leaf), leaf));
     EXPECT_GT(a.hits, 5000u);
   }
+}
+
+// The matter query looks SP_CONTACT_TOLERANCE behind its origin. A face
+// there, in a leaf of its own (a flat box: entry and exit on one plane), has
+// a negative exit distance; scaled up by the box margin it would fall below
+// the entry and the face would be missed. Hand-derived: the floor y = 0
+// lies 0.5 mm above an origin going down at slope (0.3, -0.9, 0.2), so at
+// t = -0.0005 / |d.y| along the unit direction d.
+TEST(WideBvh, FaceJustBehindTheOriginInAFlatLeafIsFound) {
+  Soup soup;
+  soup.tri(vec3(-1, 0, -1), vec3(1, 0, 1), vec3(1, 0, -1));
+  soup.tri(vec3(-1, 0, -1), vec3(-1, 0, 1), vec3(1, 0, 1));
+  const sp::Bvh bvh = soup.build();
+  const vec3 dir = glm::normalize(vec3(0.3f, -0.9f, 0.2f));
+  const vec3 origin(0.2f, -0.0005f, -0.4f);  // above triangle 0 (x > z)
+  const float expected_t = -0.0005f / -dir.y;
+  sp::shader::HitList binary;
+  sp::shader::sp_nearest_hits(bvh.nodes.data(), bvh.triangles.data(), origin, dir, -SP_CONTACT_TOLERANCE, 1.0f, binary);
+  const sp::shader::HitList wide = sp::nearest_hits(bvh, origin, dir, -SP_CONTACT_TOLERANCE, 1.0f);
+  const sp::shader::HitList* lists[] = {&binary, &wide};
+  for (const sp::shader::HitList* list : lists) {
+    ASSERT_EQ(list->count, 1u) << (list == &binary ? "binary walk" : "wide walk");
+    EXPECT_NEAR(list->t[0], expected_t, 1e-8f);
+    EXPECT_EQ(bvh.triangles[list->triangle[0]].scene_index, 0u);
+  }
+  // Starting at the origin (tmin 0) it is behind the window: no hit, and
+  // the closest-hit walks agree.
+  sp::shader::HitList ahead;
+  sp::shader::sp_nearest_hits(bvh.nodes.data(), bvh.triangles.data(), origin, dir, 0.0f, 1.0f, ahead);
+  EXPECT_EQ(ahead.count, 0u);
+  EXPECT_EQ(sp::closest_hit(bvh, origin, dir, 0.0f, 1.0f).triangle, SP_INVALID);
 }
 
 // A tree large enough that the walk prefetches (kPrefetchTreeBytes).

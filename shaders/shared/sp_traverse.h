@@ -96,6 +96,15 @@ SP_INLINE float sp_intersect_triangle(RayQuery q, vec3 v0, vec3 v1, vec3 v2) {
   return t_scaled / det;
 }
 
+// A box's exit distance moved away from its entry by the rounding of both,
+// so that the box test stays conservative. 1 + 2 * gamma(3) for a positive
+// distance (Ize 2013, whose argument takes 0 <= tnear <= tfar). A negative
+// one (a box behind the origin, which the matter query's look-back of
+// SP_CONTACT_TOLERANCE reaches) is moved towards zero by 1 - 2 * gamma(3)
+// instead: scaled up it would shrink, and a flat box (the leaf of one
+// axis-aligned face), whose entry and exit coincide, would miss.
+SP_INLINE float sp_box_far_margin(float tfar) { return tfar * (tfar < 0.0f ? 0.9999996f : 1.0000004f); }
+
 // Entry distance of the ray into the box, or SP_FAR when it misses the box
 // within [tmin, tmax].
 SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
@@ -113,8 +122,7 @@ SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
     }
   }
   float tnear = max(max(tlo.x, tlo.y), max(tlo.z, q.tmin));
-  // 1 + 2 * gamma(3): keeps the test conservative under rounding (Ize 2013).
-  float tfar = min(min(thi.x, thi.y), min(thi.z, tmax)) * 1.0000004f;
+  float tfar = sp_box_far_margin(min(min(thi.x, thi.y), min(thi.z, tmax)));
   return tnear <= tfar ? tnear : SP_FAR;
 }
 

@@ -17,8 +17,11 @@
 namespace sp {
 namespace {
 
-// sp_intersect_box's far-distance scaling (1 + 2 * gamma(3), Ize 2013).
+// sp_box_far_margin's scalings of a box's exit distance: a positive one
+// (1 + 2 * gamma(3), Ize 2013) and a negative one, behind the origin.
 constexpr float kBoxMargin = 1.0000004f;
+constexpr float kBoxMarginBehind = 0.9999996f;
+static_assert(kBoxMargin == 1.0000004f && kBoxMarginBehind == 0.9999996f, "as sp_box_far_margin");
 // A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
@@ -237,15 +240,30 @@ SP_ALWAYS_INLINE Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) 
   return (plane(node, r.entry_plane[a]) - r.origin[a]) * r.inv_dir[a];
 }
 
+// sp_box_far_margin. kBehind: the ray's window starts behind its origin
+// (tmin < 0, the matter query), where an exit distance may be negative.
+// With tmin >= 0 a negative exit misses under either scaling (tnear >= 0),
+// so the walks that start at the origin keep the one multiply.
+template <bool kBehind>
+SP_ALWAYS_INLINE Vec4 far_margin(Vec4 tfar) {
+  if (!kBehind) return tfar * splat(kBoxMargin);
+  return tfar * select(tfar < splat(0.0f), splat(kBoxMarginBehind), splat(kBoxMargin));
+}
+template <bool kBehind>
+SP_ALWAYS_INLINE float far_margin(float tfar) {
+  return tfar * (kBehind && tfar < 0.0f ? kBoxMarginBehind : kBoxMargin);
+}
+
 // sp_intersect_box on the four slots with limit `tmax`: returns the lanes
 // hit, with their entry distances in `tnear`. kParallel: the ray has
 // direction components of magnitude <= 1e-20, the bits of `parallel`
-// (RayQuery::parallel_axes).
+// (RayQuery::parallel_axes). kBehind: as far_margin.
 //
 // The box-derived value is always the second operand of vmin/vmax, which
 // return it when the comparison is unordered, so the NaN bounds of an
-// unused slot reach tnear and tfar (see WideNode).
-template <bool kParallel>
+// unused slot reach tnear and tfar (see WideNode); NaN < 0 is false, so
+// far_margin keeps them NaN.
+template <bool kParallel, bool kBehind>
 SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const WideNode& node, float tmax,
                                           Vec4& tnear) {
   Vec4 entry[3], exit[3];
@@ -261,7 +279,7 @@ SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parall
   // on the path to the next node's address.
   tnear = vmax(vmax(entry[0], entry[1]), vmax(r.tmin, entry[2]));
   const Vec4 tfar = vmin(vmin(exit[0], exit[1]), vmin(splat(tmax), exit[2]));
-  return lane_mask(tnear <= tfar * splat(kBoxMargin));
+  return lane_mask(tnear <= far_margin<kBehind>(tfar));
 }
 
 // Keeps the compiler from turning a branch into conditional moves
@@ -404,7 +422,7 @@ SP_ALWAYS_INLINE void prefetch_slots(const WideNode& node, const WideNode* nodes
 
 // The traversal proper. Entering slots in the order of the binary walk (see
 // the file comment of wide_bvh.h) is what makes the answer identical to it.
-template <bool kParallel, bool kPrefetch, class Collector>
+template <bool kParallel, bool kPrefetch, bool kBehind, class Collector>
 SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, Collector& best) {
   // A slot that waits, with the entry distance of its box.
   struct Entry {
@@ -422,7 +440,7 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
       const WideNode& node = nodes[item.child];
       if (kPrefetch) prefetch_slots(node, nodes, packets);
       Vec4 tnear;
-      const unsigned hits = intersect_boxes<kParallel>(ray, parallel, node, best.limit(), tnear);
+      const unsigned hits = intersect_boxes<kParallel, kBehind>(ray, parallel, node, best.limit(), tnear);
       if (hits != 0u) {
         if ((hits & (hits - 1u)) == 0u) {  // one hit, the common case
           item = predicted_slot(node, hits);
@@ -462,8 +480,9 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
     }
     // Pop, skipping slots that a closer hit has since ruled out: re-testing
     // the box with the new limit would give the same entry distance, and
-    // min(exit, limit) * margin is below it exactly when limit * margin is.
-    const float limit = best.limit() * kBoxMargin;
+    // far_margin(min(exit, limit)) is below it exactly when
+    // far_margin(limit) is (far_margin is monotonic).
+    const float limit = far_margin<kBehind>(best.limit());
     for (;;) {
       if (size == 0u) return;
       --size;
@@ -533,18 +552,28 @@ WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
 
 namespace {
 
+template <bool kBehind, class Collector>
+SP_ALWAYS_INLINE void walk_from(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, bool large,
+                                Collector& collector) {
+  if (parallel != 0u) {
+    traverse<true, false, kBehind>(wide, ray, parallel, collector);
+  } else if (large) {
+    traverse<false, true, kBehind>(wide, ray, 0u, collector);
+  } else {
+    traverse<false, false, kBehind>(wide, ray, 0u, collector);
+  }
+}
+
 template <class Collector>
 SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax,
                            Collector& collector) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   const WideRay ray = make_wide_ray(q);
   const bool large = wide.bytes() > kPrefetchTreeBytes;
-  if (q.parallel_axes != 0u) {
-    traverse<true, false>(wide, ray, q.parallel_axes, collector);
-  } else if (large) {
-    traverse<false, true>(wide, ray, 0u, collector);
+  if (q.tmin < 0.0f) {
+    walk_from<true>(wide, ray, q.parallel_axes, large, collector);
   } else {
-    traverse<false, false>(wide, ray, 0u, collector);
+    walk_from<false>(wide, ray, q.parallel_axes, large, collector);
   }
 }
 

@@ -14,7 +14,7 @@
 // triangle and t bit for bit, which the CPU backend needs to stay the GPU's
 // reference:
 //  - Box test: sp_intersect_box lane by lane (same operations, same
-//    1.0000004f margin, same axis-parallel rule). Taking each axis's entry
+//    margin as sp_box_far_margin, same axis-parallel rule). Taking each axis's entry
 //    and exit plane by the sign of inv_dir gives its min/max exactly.
 //  - Triangle test: sp_intersect_triangle's Woop arithmetic, operation by
 //    operation, on four lanes; IEEE rounding makes each lane bit-identical
