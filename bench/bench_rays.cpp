@@ -48,7 +48,7 @@ using spbench::Json;
 constexpr const char* kUsage =
     "usage: bench_rays [--scenes SPEC,...] [--rays N] [--budget B] [--runs R] [--build-runs R] [--threads T]\n"
     "                  [--backends cpu,gpu|none] [--sim-steps N] [--sim-max-seconds S] [--pattern paper|burst|scene]\n"
-    "                  [--cpu-walk best|baseline|avx512] [--embree-accel NAME] [--json OUT.json]\n"
+    "                  [--cpu-walk best|baseline|avx512] [--embree-accel NAME] [--traversal-cost C] [--json OUT.json]\n"
     "  --scenes      glTF files and gen:N generated levels of about N triangles\n"
     "                (default: scenes/level.gltf,gen:10000,gen:100000,gen:1000000)\n"
     "  --rays        emitted rays cast per pass (default 500000), gathered from steps at --budget rays (default 2500)\n"
@@ -58,7 +58,9 @@ constexpr const char* kUsage =
     "  --sim-steps   frames measured per backend (default 60, after 10 of warm-up)\n"
     "  --cpu-walk    soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
     "  --embree-accel  the tree Embree builds (its tri_accel setting), e.g. bvh4.triangle4 to compare 4-wide\n"
-    "                nodes with ours (default: Embree's choice, bvh8.triangle4 on AVX2 and AVX-512 CPUs)\n";
+    "                nodes with ours (default: Embree's choice, bvh8.triangle4 on AVX2 and AVX-512 CPUs)\n"
+    "  --traversal-cost  our BVH's SAH cost of a node visit (BvhBuildSettings::traversal_cost; default the\n"
+    "                library's), for the casts and the builds\n";
 
 struct Options {
   std::vector<std::string> scenes = {SP_DEFAULT_SCENE, "gen:10000", "gen:100000", "gen:1000000"};
@@ -73,6 +75,7 @@ struct Options {
   std::string json;
   std::string cpu_walk = "best";
   std::string embree_accel;  // empty: Embree's default for this CPU
+  sp::BvhBuildSettings bvh;  // our tree, for the casts and the builds
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -91,12 +94,15 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--json") o.json = value;
     else if (flag == "--cpu-walk") o.cpu_walk = value;
     else if (flag == "--embree-accel") o.embree_accel = value;
+    else if (flag == "--traversal-cost") o.bvh.traversal_cost = static_cast<float>(cli.to_double(value, flag));
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else return false;
     return true;
   });
   if (o.scenes.empty() || o.rays == 0 || o.budget == 0 || o.runs == 0 || o.build_runs == 0 || o.loop.steps == 0)
     cli.fail("--scenes, --rays, --budget, --runs, --build-runs and --sim-steps must not be empty or 0");
+  if (!std::isfinite(o.bvh.traversal_cost) || o.bvh.traversal_cost < 0.0f)
+    cli.fail("--traversal-cost must be a finite number >= 0");
   for (const auto& b : o.backends)
     if (b != "cpu" && b != "gpu") cli.fail("unknown backend " + b);
   return o;
@@ -195,7 +201,7 @@ int run(const CommandLine& cli, const Options& options) {
     sp::Config config;
     config.ray_budget = options.budget;
     spbench::apply_pattern(scene, options.pattern, config.dt);
-    auto made = sp::make_world(scene, config);
+    auto made = sp::make_world(scene, config, options.bvh);
     if (!made) {
       std::fprintf(stderr, "bench_rays: %s: %s\n", spec.c_str(), made.error().message.c_str());
       return 1;
@@ -211,7 +217,7 @@ int run(const CommandLine& cli, const Options& options) {
     // threads = 1 is the serial build, for comparison with Embree's.
     Json builds = Json::array();
     for (unsigned build_threads : {0u, 1u}) {
-      sp::BvhBuildSettings settings;
+      sp::BvhBuildSettings settings = options.bvh;
       settings.threads = build_threads;
       std::vector<double> build_ms;
       // Run 0 warms up (the heap's first growth, thread stacks) unmeasured:
@@ -345,6 +351,7 @@ int run(const CommandLine& cli, const Options& options) {
                        {"budget", options.budget},
                        {"runs", options.runs},
                        {"build_runs", options.build_runs},
+                       {"traversal_cost", options.bvh.traversal_cost},
                        {"pattern", spbench::pattern_name(options.pattern)},
                        {"sim_steps", options.loop.steps},
                        {"sim_warmup", options.loop.warmup},
