@@ -244,10 +244,14 @@ SP_ALWAYS_INLINE Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) 
 // (tmin < 0, the matter query), where an exit distance may be negative.
 // With tmin >= 0 a negative exit misses under either scaling (tnear >= 0),
 // so the walks that start at the origin keep the one multiply.
+// The larger of the two products is the one sp_box_far_margin picks by the
+// sign (rounding is monotonic); the two multiplies run side by side, so
+// the look-back adds one max to each node's chain rather than a compare
+// and a blend. NaN lanes stay NaN.
 template <bool kBehind>
 SP_ALWAYS_INLINE Vec4 far_margin(Vec4 tfar) {
   if (!kBehind) return tfar * splat(kBoxMargin);
-  return tfar * select(tfar < splat(0.0f), splat(kBoxMarginBehind), splat(kBoxMargin));
+  return vmax(tfar * splat(kBoxMarginBehind), tfar * splat(kBoxMargin));
 }
 template <bool kBehind>
 SP_ALWAYS_INLINE float far_margin(float tfar) {
