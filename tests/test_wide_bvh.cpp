@@ -319,7 +319,7 @@ TEST(WideBvh, FaceJustBehindTheOriginInAFlatLeafIsFound) {
 
 // A tree large enough that the walk prefetches (kPrefetchTreeBytes).
 TEST(WideBvh, LargeTreesMatchBinary) {
-  Soup soup = make_random_soup(40000, 31);
+  Soup soup = make_random_soup(64000, 31);
   sp::Bvh bvh = soup.build();
   ASSERT_GT(bvh.wide->bytes(), sp::kPrefetchTreeBytes);
   check_wide_invariants(bvh);
