@@ -55,8 +55,9 @@ SP_INLINE void sp_matter_pop(SP_INOUT(uint) stack_size, SP_INOUT(uint) s0, SP_IN
 //    crossed together; each solid (BvhTriangle::solid) in a group crosses
 //    once: in when it has only entering faces there, out when only leaving
 //    ones, not at all when both (an edge grazed, or a solid thinner than the
-//    tolerance). The entry face opens the first group, at t = 0; sheets,
-//    faces seen edge-on and leaving faces behind p_in are not crossed;
+//    tolerance). The entry face opens the first group, at t = 0; sheets and
+//    faces seen edge-on are not crossed, and the list holds no leaving
+//    face behind p_in;
 //  - the ray leaves matter after the first group that has a leaving face and
 //    leaves it inside no solid (or fewer than none: winding that disagrees);
 //    the exit face is that group's farthest leaving face;
@@ -70,16 +71,17 @@ SP_INLINE void sp_matter_pop(SP_INOUT(uint) stack_size, SP_INOUT(uint) s0, SP_IN
 SP_INLINE CastResult sp_find_exit(SP_MATTER_ARGS_DECL HitList list, uint entry_triangle) {
   BvhTriangle entry = bvh_triangles[entry_triangle];
   uint entry_key = entry.solid * 4u + SP_CROSSING_ENTER;
-  // Entries the walk does not cross: the entry face again, sheets, edge-on,
-  // and leaving faces behind p_in. The ray came to p_in through air, so it
-  // left no solid there: such a face is the far side of a concave corner
-  // struck within the look-back (the ceiling over the wall entered a
-  // fraction of a millimetre below it), and counted with the entry face it
-  // would cancel it as an edge grazed and let the ray through the wall.
+  // Entries the walk does not cross: the entry face again, sheets, edge-on.
+  // The list holds no leaving face behind p_in (sp_hit_list_offer drops
+  // them): the ray came to p_in through air, so it left no solid there.
+  // Such a face is the far side of a concave corner struck within the
+  // look-back (the ceiling over a wall entered a fraction of a millimetre
+  // below it), or the face the ray just left or was reflected from; counted
+  // with the entry face it would cancel it as an edge grazed and let the
+  // ray through the wall.
   uint skip = 0u;
   for (uint i = 0u; i < list.count; ++i) {
-    bool left_behind = list.t[i] < 0.0f && (list.key[i] & 3u) == SP_CROSSING_LEAVE;
-    bool crossed = list.triangle[i] != entry_triangle && (list.key[i] & 3u) != SP_CROSSING_NONE && !left_behind &&
+    bool crossed = list.triangle[i] != entry_triangle && (list.key[i] & 3u) != SP_CROSSING_NONE &&
                    !(layers[bvh_triangles[list.triangle[i]].layer].sheet_thickness > 0.0f);
     if (!crossed) skip |= 1u << i;
   }

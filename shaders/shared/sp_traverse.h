@@ -203,8 +203,13 @@ SP_INLINE uint sp_crossing(vec3 normal, vec3 dir) {
 // at one distance are crossed together anyway, and the list holds a word
 // less per entry; both backends share the tree, so they agree.) A face crossed like a listed one of the same solid within
 // SP_CONTACT_TOLERANCE of it is that face's twin across a shared edge (or a
-// fold thinner than the tolerance): it is left out.
+// fold thinner than the tolerance): it is left out. So is a leaving face
+// behind the origin (t < 0, the look-back): a ray that penetrated came to
+// p_in through air and left no solid there (sp_find_exit). Dropped here,
+// it takes no place in the list and cannot stand in as the twin of a
+// leaving face just ahead.
 SP_INLINE void sp_hit_list_offer(SP_INOUT(HitList) list, float t, uint triangle, uint key) {
+  if (t < 0.0f && (key & 3u) == SP_CROSSING_LEAVE) return;
   if ((key & 3u) != SP_CROSSING_NONE) {
     for (uint e = 0u; e < list.count; ++e) {
       SP_PRECISE float gap = abs(list.t[e] - t);
