@@ -149,8 +149,10 @@ void check_wide_invariants(const sp::Bvh& bvh) {
 // Spreads the rays over the (tmin, tmax] windows the simulation and the
 // edge cases use: as given, tmax = SP_FAR (the traversal must still treat
 // t == SP_FAR as a miss), tmin = SP_EPSILON (reflected rays), a finite tmax,
-// and an unbounded window (tmin = -inf, tmax = +inf: hits behind the origin
-// count, and unused slots must miss whatever the limit).
+// an unbounded window (tmin = -inf, tmax = +inf: hits behind the origin
+// count, and unused slots must miss whatever the limit), and the matter
+// query's look-back (tmin = -SP_CONTACT_TOLERANCE: boxes behind the origin
+// take the other margin, sp_box_far_margin).
 std::vector<Ray> vary_windows(std::vector<Ray> rays, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -287,7 +289,7 @@ TEST(WideBvh, RandomSoupMatchesBinary) {
 }
 
 // The matter query looks SP_CONTACT_TOLERANCE behind its origin. A face
-// there, in a leaf of its own (a flat box: entry and exit on one plane), has
+// there, in a flat leaf (one quad: entry and exit on one plane), has
 // a negative exit distance; scaled up by the box margin it would fall below
 // the entry and the face would be missed. Hand-derived: the floor y = 0
 // lies 0.5 mm above an origin going down at slope (0.3, -0.9, 0.2), so at

@@ -97,13 +97,19 @@ SP_INLINE float sp_intersect_triangle(RayQuery q, vec3 v0, vec3 v1, vec3 v2) {
 }
 
 // A box's exit distance moved away from its entry by the rounding of both,
-// so that the box test stays conservative. 1 + 2 * gamma(3) for a positive
-// distance (Ize 2013, whose argument takes 0 <= tnear <= tfar). A negative
-// one (a box behind the origin, which the matter query's look-back of
-// SP_CONTACT_TOLERANCE reaches) is moved towards zero by 1 - 2 * gamma(3)
+// so that the box test stays conservative: the slab distances carry a
+// relative error of gamma(3) each (Ize 2013, whose argument takes
+// 0 <= tnear <= tfar). A positive exit is scaled by 1 + 2 * gamma(3). A
+// negative one (a box behind the origin, which the matter query's
+// look-back of SP_CONTACT_TOLERANCE reaches) must move towards zero
 // instead: scaled up it would shrink, and a flat box (the leaf of one
-// axis-aligned face), whose entry and exit coincide, would miss.
-SP_INLINE float sp_box_far_margin(float tfar) { return tfar * (tfar < 0.0f ? 0.9999996f : 1.0000004f); }
+// axis-aligned face), whose entry and exit coincide, would miss. It needs
+// x * (1 - gamma(3)) / (1 + gamma(3)) = x * (1 - 6u) after the multiply's
+// own rounding, u = 2^-24: SP_BOX_MARGIN_BEHIND is 1 - 7u, one u to spare
+// for that rounding (1 - 6u would fall short by it).
+#define SP_BOX_MARGIN 1.0000004f
+#define SP_BOX_MARGIN_BEHIND 0.9999996f
+SP_INLINE float sp_box_far_margin(float tfar) { return tfar * (tfar < 0.0f ? SP_BOX_MARGIN_BEHIND : SP_BOX_MARGIN); }
 
 // Entry distance of the ray into the box, or SP_FAR when it misses the box
 // within [tmin, tmax].

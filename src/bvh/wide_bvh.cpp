@@ -18,10 +18,9 @@ namespace sp {
 namespace {
 
 // sp_box_far_margin's scalings of a box's exit distance: a positive one
-// (1 + 2 * gamma(3), Ize 2013) and a negative one, behind the origin.
-constexpr float kBoxMargin = 1.0000004f;
-constexpr float kBoxMarginBehind = 0.9999996f;
-static_assert(kBoxMargin == 1.0000004f && kBoxMarginBehind == 0.9999996f, "as sp_box_far_margin");
+// and a negative one, behind the origin.
+constexpr float kBoxMargin = SP_BOX_MARGIN;
+constexpr float kBoxMarginBehind = SP_BOX_MARGIN_BEHIND;
 // A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
@@ -265,8 +264,8 @@ SP_ALWAYS_INLINE float far_margin(float tfar) {
 //
 // The box-derived value is always the second operand of vmin/vmax, which
 // return it when the comparison is unordered, so the NaN bounds of an
-// unused slot reach tnear and tfar (see WideNode); NaN < 0 is false, so
-// far_margin keeps them NaN.
+// unused slot reach tnear and tfar (see WideNode); far_margin keeps them
+// NaN (a NaN times either factor, and vmax of two NaNs).
 template <bool kParallel, bool kBehind>
 SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parallel, const WideNode& node, float tmax,
                                           Vec4& tnear) {
