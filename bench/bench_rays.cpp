@@ -21,7 +21,6 @@
 //   bench_rays --scenes scenes/level.gltf,gen:10000,gen:100000,gen:1000000 --rays 500000 --runs 5
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -94,15 +93,18 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--json") o.json = value;
     else if (flag == "--cpu-walk") o.cpu_walk = value;
     else if (flag == "--embree-accel") o.embree_accel = value;
-    else if (flag == "--traversal-cost") o.bvh.traversal_cost = static_cast<float>(cli.to_double(value, flag));
-    else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
+    else if (flag == "--traversal-cost") {
+      const double cost = cli.to_double(value, flag);
+      if (!(cost >= 0.0 && cost <= 1000.0)) cli.fail("--traversal-cost must be in [0, 1000]");
+      o.bvh.traversal_cost = static_cast<float>(cost);
+    } else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else return false;
     return true;
   });
   if (o.scenes.empty() || o.rays == 0 || o.budget == 0 || o.runs == 0 || o.build_runs == 0 || o.loop.steps == 0)
     cli.fail("--scenes, --rays, --budget, --runs, --build-runs and --sim-steps must not be empty or 0");
-  if (!std::isfinite(o.bvh.traversal_cost) || o.bvh.traversal_cost < 0.0f)
-    cli.fail("--traversal-cost must be a finite number >= 0");
+  if (!spbench::is_accel_name(o.embree_accel))
+    cli.fail("--embree-accel must be one word (letters, digits, '.', '_'), such as bvh4.triangle4");
   for (const auto& b : o.backends)
     if (b != "cpu" && b != "gpu") cli.fail("unknown backend " + b);
   return o;
@@ -184,7 +186,8 @@ int run(const CommandLine& cli, const Options& options) {
   const auto embree = spbench::embree_version();
   spbench::select_cpu_walk(cli, options.cpu_walk);
   std::printf("host: %s\n", spbench::host_description().c_str());
-  std::printf("soundpaint CPU walk: %s\n", spbench::cpu_walk_name());
+  std::printf("soundpaint CPU walk: %s; BVH SAH traversal cost %g\n", spbench::cpu_walk_name(),
+              static_cast<double>(options.bvh.traversal_cost));
   std::printf("casting on %u threads; %u emitted rays per pass (budget %u per step), median of %u passes\n", threads,
               options.rays, options.budget, options.runs);
   if (embree)

@@ -17,19 +17,13 @@ namespace spbench {
 
 const char* quality_name(EmbreeQuality quality) { return quality == EmbreeQuality::High ? "high" : "medium"; }
 
-#ifdef SP_HAVE_EMBREE
-
-namespace {
-
-// One word of Embree's configuration syntax, so that a name cannot add
-// settings of its own (they are separated by commas and '=').
-bool valid_accel_name(const std::string& accel) {
+bool is_accel_name(const std::string& accel) {
   return std::all_of(accel.begin(), accel.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_';
   });
 }
 
-}  // namespace
+#ifdef SP_HAVE_EMBREE
 
 std::optional<std::string> embree_version() { return std::string(RTC_VERSION_STRING); }
 
@@ -52,7 +46,7 @@ struct EmbreeScene::Impl {
 EmbreeScene::EmbreeScene(std::span<const glm::vec3> vertices, EmbreeQuality quality, unsigned threads,
                          const std::string& accel)
     : impl_(std::make_unique<Impl>()) {
-  if (!valid_accel_name(accel)) throw std::runtime_error("Embree: \"" + accel + "\" is not an acceleration structure");
+  if (!is_accel_name(accel)) throw std::runtime_error("Embree: \"" + accel + "\" is not an acceleration structure");
   std::string config = "threads=" + std::to_string(threads);
   if (!accel.empty()) config += ",tri_accel=" + accel;
   impl_->device = rtcNewDevice(config.c_str());

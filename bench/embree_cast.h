@@ -39,6 +39,11 @@ std::optional<std::string> embree_version();
 enum class EmbreeQuality { Medium, High };  // RTC_BUILD_QUALITY_MEDIUM / _HIGH
 const char* quality_name(EmbreeQuality quality);
 
+// Whether `accel` is one word of Embree's configuration syntax (letters,
+// digits, '.', '_'; empty for Embree's default), so that a tri_accel name
+// cannot add settings of its own after a comma.
+bool is_accel_name(const std::string& accel);
+
 // An Embree device and a committed scene of one triangle mesh.
 class EmbreeScene {
  public:
