@@ -399,7 +399,7 @@ TEST(BvhRefit, SahCostOfAHandMadeTree) {
   bvh.nodes = {node(vec3(0), vec3(2, 1, 1), 1, 0), node(vec3(0), vec3(1), 0, 1),
                node(vec3(1, 0, 0), vec3(2, 1, 1), 1, 3)};
   bvh.triangles.assign(4, sp::BvhTriangle{});
-  EXPECT_NEAR(sp::bvh_sah_cost(bvh), 1.0 + 12.0 / 5.0, 1e-12);
+  EXPECT_NEAR(sp::bvh_sah_cost(bvh, 1.0f), 1.0 + 12.0 / 5.0, 1e-12);
   EXPECT_NEAR(sp::bvh_sah_cost(bvh, 2.0f), 2.0 + 12.0 / 5.0, 1e-12);
   EXPECT_EQ(sp::bvh_sah_cost(sp::Bvh{}), 0.0);
 }
@@ -410,7 +410,7 @@ TEST(BvhRefit, SahCostOfAZeroAreaTreeCountsEveryNode) {
   bvh.nodes = {node(vec3(0), vec3(2, 0, 0), 1, 0), node(vec3(0), vec3(1, 0, 0), 0, 1),
                node(vec3(1, 0, 0), vec3(2, 0, 0), 1, 2)};
   bvh.triangles.assign(3, sp::BvhTriangle{});
-  EXPECT_EQ(sp::bvh_sah_cost(bvh), 1.0 + 1.0 + 2.0);
+  EXPECT_EQ(sp::bvh_sah_cost(bvh, 1.0f), 1.0 + 1.0 + 2.0);
   EXPECT_EQ(sp::bvh_sah_cost(bvh, 3.0f), 3.0 + 1.0 + 2.0);
 }
 

@@ -116,7 +116,8 @@ Result<BvhChanges> refit_bvh(Bvh& bvh, std::span<const glm::vec3> vertices);
 // mostly grows the root (a mesh leaving the scene) can lower it. When the
 // root's area is 0 (every triangle on one line or point), so is every
 // node's, and each 0/0 counts as 1: the cost of visiting every node. 0 for
-// an empty tree.
-double bvh_sah_cost(const Bvh& bvh, float traversal_cost = 1.0f);
+// an empty tree. By default priced as build_bvh builds, so that a refit tree
+// compares with its build.
+double bvh_sah_cost(const Bvh& bvh, float traversal_cost = BvhBuildSettings{}.traversal_cost);
 
 }  // namespace sp

@@ -25,14 +25,13 @@ constexpr double kRebuildCostRatio = 2.0;
 
 // bvh_sah_cost is relative to the root box, so geometry leaving the level
 // can lower it while every node grew; scaled by the root's area it is the
-// absolute expected work per ray, which does grow. Priced with the
-// traversal cost the rebuild below builds with.
+// absolute expected work per ray, which does grow.
 double absolute_sah_cost(const Bvh& bvh) {
   if (bvh.nodes.empty()) return 0.0;
   const glm::vec3 e = bvh.nodes[0].bmax - bvh.nodes[0].bmin;
   const double half_area =
       static_cast<double>(e.x) * e.y + static_cast<double>(e.y) * e.z + static_cast<double>(e.z) * e.x;
-  return bvh_sah_cost(bvh, BvhBuildSettings{}.traversal_cost) * std::max(half_area, 1e-12);
+  return bvh_sah_cost(bvh) * std::max(half_area, 1e-12);
 }
 
 Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
