@@ -22,8 +22,14 @@ namespace spbench {
 
 void select_cpu_walk(const CommandLine& cli, const std::string& name) {
   if (name == "best") return;
-  if (name != "baseline" && name != "avx512") cli.fail("--cpu-walk must be best, baseline or avx512, not " + name);
-  const sp::WideWalk walk = name == "avx512" ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline;
+  sp::WideWalk walk = sp::WideWalk::Baseline;
+  if (name == "avx512") {
+    walk = sp::WideWalk::Avx512;
+  } else if (name == "avx512-8wide") {
+    walk = sp::WideWalk::Avx512Wide8;
+  } else if (name != "baseline") {
+    cli.fail("--cpu-walk must be best, baseline, avx512 or avx512-8wide, not " + name);
+  }
   if (!sp::select_wide_walk(walk)) cli.fail("--cpu-walk " + name + ": this build or this CPU does not have it");
 }
 

@@ -34,6 +34,7 @@
 #include "sim/thread_pool.h"
 #include "io/output.h"
 #include "sim/world_geometry.h"
+#include "bvh/wide_bvh.h"
 #include "sp_ray_model.h"
 
 namespace {
@@ -47,7 +48,8 @@ using spbench::Json;
 constexpr const char* kUsage =
     "usage: bench_rays [--scenes SPEC,...] [--rays N] [--budget B] [--runs R] [--build-runs R] [--threads T]\n"
     "                  [--backends cpu,gpu|none] [--sim-steps N] [--sim-max-seconds S] [--pattern paper|burst|scene]\n"
-    "                  [--cpu-walk best|baseline|avx512] [--embree-accel NAME] [--traversal-cost C] [--json OUT.json]\n"
+    "                  [--cpu-walk best|baseline|avx512|avx512-8wide] [--embree-accel NAME] [--traversal-cost C] "
+    "[--json OUT.json]\n"
     "  --scenes      glTF files and gen:N generated levels of about N triangles\n"
     "                (default: scenes/level.gltf,gen:10000,gen:100000,gen:1000000)\n"
     "  --rays        emitted rays cast per pass (default 500000), gathered from steps at --budget rays (default 2500)\n"
@@ -56,6 +58,7 @@ constexpr const char* kUsage =
     "  --backends    simulation backends stepped on each scene for casts/s (default cpu,gpu; none skips)\n"
     "  --sim-steps   frames measured per backend (default 60, after 10 of warm-up)\n"
     "  --cpu-walk    soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
+    "                (4-wide), avx512-8wide\n"
     "  --embree-accel  the tree Embree builds (its tri_accel setting), e.g. bvh4.triangle4 to compare 4-wide\n"
     "                nodes with ours (default: Embree's choice, bvh8.triangle4 on AVX2 and AVX-512 CPUs)\n"
     "  --traversal-cost  our BVH's SAH cost of a node visit (BvhBuildSettings::traversal_cost; default the\n"
@@ -214,6 +217,15 @@ int run(const CommandLine& cli, const Options& options) {
                 scene.triangle_count(), scene.sources.size(), world.geometry->bvh.nodes.size(),
                 world.geometry->bvh.depth);
     Json row = {{"spec", spec}, {"triangles", scene.triangle_count()}, {"sources", scene.sources.size()}};
+    if (const auto& wide = world.geometry->bvh.wide) {
+      // Which tree the CPU walk takes: the 8-wide one exists only up to
+      // sp::kWide8MaxTreeBytes.
+      constexpr double kMiB = 1024.0 * 1024.0;
+      std::printf("  CPU walk %s; 4-wide nodes and packets %.1f MiB, 8-wide nodes %.1f MiB%s\n",
+                  spbench::cpu_walk_name(), static_cast<double>(wide->wide4_bytes()) / kMiB,
+                  static_cast<double>(wide->nodes8.size() * sizeof(sp::WideNode8)) / kMiB,
+                  wide->nodes8.empty() ? " (none: the 4-wide tree is walked)" : "");
+    }
 
     // BVH builds.
     // build_bvh builds the subtrees below the root on all cores by default;

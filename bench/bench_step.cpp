@@ -34,7 +34,7 @@ constexpr const char* kUsage =
     "usage: bench_step [--scene FILE|gen:TRIANGLES] [--backends cpu,gpu] [--budgets A,B,...]\n"
     "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
     "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json] [--diffraction 0|1]\n"
-    "                  [--cpu-traversal soundpaint|embree] [--cpu-walk best|baseline|avx512]\n"
+    "                  [--cpu-traversal soundpaint|embree] [--cpu-walk best|baseline|avx512|avx512-8wide]\n"
     "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
     "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
     "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
@@ -46,7 +46,8 @@ constexpr const char* kUsage =
     "  --diffraction  1: diffraction on, its other keys at their defaults (default 0)\n"
     "  --cpu-traversal  the config's cpu_traversal for the CPU backend (default soundpaint;\n"
     "                 embree needs a build with -DSOUNDPAINT_EMBREE=ON)\n"
-    "  --cpu-walk     soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n";
+    "  --cpu-walk     soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
+    "                (4-wide), avx512-8wide\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;

@@ -435,6 +435,10 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
                              serial.wide->nodes.size() * sizeof(sp::WideNode)));
     EXPECT_EQ(0, std::memcmp(other.wide->packets.data(), serial.wide->packets.data(),
                              serial.wide->packets.size() * sizeof(sp::TrianglePacket)));
+    EXPECT_EQ(other.wide->depth8, serial.wide->depth8);
+    ASSERT_EQ(other.wide->nodes8.size(), serial.wide->nodes8.size());
+    EXPECT_EQ(0, std::memcmp(other.wide->nodes8.data(), serial.wide->nodes8.data(),
+                             serial.wide->nodes8.size() * sizeof(sp::WideNode8)));
   }
   check_invariants(serial, soup, {});
 }

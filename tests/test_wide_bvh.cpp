@@ -1,5 +1,5 @@
-// Tests of the CPU-only 4-wide BVH (src/bvh/wide_bvh.h): the collapsed
-// tree's invariants, and its traversal against the binary one shared with the
+// Tests of the CPU-only 4-wide and 8-wide BVHs (src/bvh/wide_bvh.h): the
+// collapsed trees' invariants, and their traversal against the binary one shared with the
 // GPU (shaders/shared/sp_traverse.h). The two must agree exactly, on every
 // ray: the same triangle and the same t, bit for bit. No mismatch class is
 // tolerated: the wide traversal enters the binary walk's leaves in the binary
@@ -139,9 +139,96 @@ class WideChecker {
   std::uint32_t deepest_ = 0;
 };
 
+// The 8-wide tree, built where this CPU runs its walk: slot 4g + 2h + k
+// holds child k of grandchild h of child g (a leaf alone in the first slot
+// of its range), bounds copied exactly, unused slots NaN, leaf slots on the
+// packets the 4-wide tree made for the same leaf, every node reached once.
+class Wide8Checker {
+ public:
+  explicit Wide8Checker(const sp::Bvh& bvh) : bvh_(bvh), wide_(*bvh.wide) {}
+
+  void run() {
+    ASSERT_EQ(wide_.nodes8.empty(),
+              !sp::wide_walk_available(sp::WideWalk::Avx512Wide8) || wide_.wide4_bytes() > sp::kWide8MaxTreeBytes)
+        << "the 8-wide tree exists exactly where its walk runs, up to its size";
+    if (wide_.nodes8.empty()) return;
+    node_refs_.assign(wide_.nodes8.size(), 0);
+    node_refs_[0] = 1;
+    std::uint32_t slots[8];
+    std::fill(std::begin(slots), std::end(slots), SP_INVALID);
+    if (bvh_.nodes[0].count > 0u) {
+      slots[0] = 0u;
+      check_node(0u, slots, 1u);
+    } else {
+      check_interior(0u, 0u, 1u);
+    }
+    EXPECT_EQ(deepest_, wide_.depth8);
+    EXPECT_TRUE(std::all_of(node_refs_.begin(), node_refs_.end(), [](int r) { return r == 1; }))
+        << "an 8-wide node is unreachable or shared";
+  }
+
+ private:
+  void check_interior(std::uint32_t w, std::uint32_t binary, std::uint32_t level) {
+    std::uint32_t slots[8];
+    std::fill(std::begin(slots), std::end(slots), SP_INVALID);
+    for (std::uint32_t g = 0; g < 2u; ++g) {
+      const std::uint32_t child = bvh_.nodes[binary].left_or_first + g;
+      if (bvh_.nodes[child].count > 0u) {
+        slots[4u * g] = child;
+        continue;
+      }
+      for (std::uint32_t h = 0; h < 2u; ++h) {
+        const std::uint32_t grandchild = bvh_.nodes[child].left_or_first + h;
+        const sp::BvhNode& n = bvh_.nodes[grandchild];
+        if (n.count > 0u) {
+          slots[4u * g + 2u * h] = grandchild;
+        } else {
+          slots[4u * g + 2u * h] = n.left_or_first;
+          slots[4u * g + 2u * h + 1u] = n.left_or_first + 1u;
+        }
+      }
+    }
+    check_node(w, slots, level);
+  }
+
+  void check_node(std::uint32_t w, const std::uint32_t (&slots)[8], std::uint32_t level) {
+    deepest_ = std::max(deepest_, level);
+    const sp::WideNode8& node = wide_.nodes8[w];
+    for (std::uint32_t s = 0; s < 8u; ++s) {
+      if (slots[s] == SP_INVALID) {
+        for (const auto& row : node.bounds) EXPECT_TRUE(std::isnan(row[s])) << "unused slot " << s << " of " << w;
+        continue;
+      }
+      const sp::BvhNode& n = bvh_.nodes[slots[s]];
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(node.bounds[a][s], n.bmin[a]) << "slot " << s << " of 8-wide node " << w;
+        EXPECT_EQ(node.bounds[3 + a][s], n.bmax[a]) << "slot " << s << " of 8-wide node " << w;
+      }
+      if (n.count > 0u) {
+        EXPECT_EQ(node.slot[s].count, (n.count + 3u) / 4u);
+        ASSERT_LT(node.slot[s].child, wide_.packets.size());
+        EXPECT_EQ(wide_.packets[node.slot[s].child].triangle[0], n.left_or_first)
+            << "slot " << s << " of 8-wide node " << w << " leads to its leaf's packets";
+      } else {
+        EXPECT_EQ(node.slot[s].count, 0u);
+        ASSERT_LT(node.slot[s].child, wide_.nodes8.size());
+        EXPECT_GT(node.slot[s].child, w) << "children are stored after their parent";
+        ++node_refs_[node.slot[s].child];
+        check_interior(node.slot[s].child, slots[s], level + 1u);
+      }
+    }
+  }
+
+  const sp::Bvh& bvh_;
+  const sp::WideBvh& wide_;
+  std::vector<int> node_refs_;
+  std::uint32_t deepest_ = 0;
+};
+
 void check_wide_invariants(const sp::Bvh& bvh) {
   ASSERT_TRUE(bvh.wide) << "build_bvh makes the wide tree";
   WideChecker(bvh).run();
+  Wide8Checker(bvh).run();
 }
 
 // -------------------------------------------------------------- traversal
@@ -258,7 +345,7 @@ Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vec
 // query. Returns the last walk's agreement (all walks must agree anyway).
 Agreement expect_same_as_binary(const sp::Bvh& bvh, const std::vector<Ray>& rays) {
   Agreement agreement;
-  for (const sp::WideWalk walk : {sp::WideWalk::Baseline, sp::WideWalk::Avx512}) {
+  for (const sp::WideWalk walk : {sp::WideWalk::Baseline, sp::WideWalk::Avx512, sp::WideWalk::Avx512Wide8}) {
     const WalkSelection selection(walk);
     if (!selection.selected()) continue;
     SCOPED_TRACE(std::string("walk ") + sp::wide_walk_name(walk));
@@ -473,8 +560,9 @@ TEST(WideBvh, CoincidentTrianglesMatchBinary) {
 // the CPU runs; a walk the CPU cannot run is refused and changes nothing.
 TEST(WideBvh, WalkSelectionStartsOnTheFastestAvailable) {
   const bool avx512 = sp::wide_walk_available(sp::WideWalk::Avx512);
-  const sp::WideWalk fastest = avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline;
-  std::printf("compiled walks this CPU runs: baseline%s\n", avx512 ? ", avx512" : "");
+  EXPECT_EQ(sp::wide_walk_available(sp::WideWalk::Avx512Wide8), avx512) << "the same CPUs run both";
+  const sp::WideWalk fastest = avx512 ? sp::WideWalk::Avx512Wide8 : sp::WideWalk::Baseline;
+  std::printf("compiled walks this CPU runs: baseline%s\n", avx512 ? ", avx512, avx512-8wide" : "");
   EXPECT_TRUE(sp::wide_walk_available(sp::WideWalk::Baseline));
   EXPECT_EQ(sp::selected_wide_walk(), fastest);
   {
@@ -482,6 +570,8 @@ TEST(WideBvh, WalkSelectionStartsOnTheFastestAvailable) {
     EXPECT_TRUE(baseline.selected());
     EXPECT_EQ(sp::selected_wide_walk(), sp::WideWalk::Baseline);
     EXPECT_EQ(sp::select_wide_walk(sp::WideWalk::Avx512), avx512);
+    EXPECT_EQ(sp::selected_wide_walk(), avx512 ? sp::WideWalk::Avx512 : sp::WideWalk::Baseline);
+    EXPECT_EQ(sp::select_wide_walk(sp::WideWalk::Avx512Wide8), avx512);
     EXPECT_EQ(sp::selected_wide_walk(), fastest);
   }
   EXPECT_EQ(sp::selected_wide_walk(), fastest);

@@ -12,39 +12,18 @@
 #include <limits>
 
 #include "bvh/build_workers.h"
+#include "bvh/wide8_walk.h"
+#include "bvh/wide_walk_parts.h"
 #include "sp_traverse.h"
 
 namespace sp {
 namespace {
 
-// sp_box_far_margin's scalings of a box's exit distance: a positive one
-// and a negative one, behind the origin.
-constexpr float kBoxMargin = SP_BOX_MARGIN;
-constexpr float kBoxMarginBehind = SP_BOX_MARGIN_BEHIND;
+using namespace wide_walk;
+
 // A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
-
-// The walk is inlined whole into each entry point below, so that the
-// AVX-512 one compiles all of it for AVX-512.
-#if defined(_MSC_VER)
-#define SP_ALWAYS_INLINE __forceinline
-#else
-#define SP_ALWAYS_INLINE __attribute__((always_inline)) inline
-#endif
-
-// A second copy of the walk for x86-64 CPUs with AVX-512 (F, VL, BW, DQ)
-// and AVX2/BMI2, chosen at run time. It is the same source: the same SSE
-// operations, encoded with EVEX, where 32 vector registers hold the ray's
-// constants that spill from SSE's 16 (the walk waits on its own dependency
-// chain, and AVX2's 16 registers did not help: bench/RESULTS.md sections 13
-// and 14). Lane results are the same IEEE operations bit for bit: no FMA
-// is enabled here, and -ffp-contract=off forbids forming one. GCC and Clang
-// only; MSVC and the scalar build keep the baseline walk.
-#if defined(SP_SIMD_SSE2) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define SP_WIDE_AVX512 1
-#define SP_TARGET_AVX512 __attribute__((target("avx2,bmi,bmi2,avx512f,avx512vl,avx512bw,avx512dq")))
-#endif
 
 // ---------------------------------------------------------------- collapse
 
@@ -102,7 +81,10 @@ CollapseSize collapse_size(const Bvh& bvh, std::uint32_t binary) {
 // same arrays and together write exactly what one serial collapse writes.
 class Collapser {
  public:
-  Collapser(const Bvh& bvh, WideBvh& wide, CollapseSize cursor) : bvh_(bvh), wide_(wide), cursor_(cursor) {}
+  // `leaf_packets`, when given, gets each binary leaf's first packet (for
+  // the 8-wide tree, which shares them).
+  Collapser(const Bvh& bvh, WideBvh& wide, CollapseSize cursor, std::vector<std::uint32_t>* leaf_packets)
+      : bvh_(bvh), wide_(wide), cursor_(cursor), leaf_packets_(leaf_packets) {}
 
   // The wide node of binary interior node `binary` at wide level `level`,
   // and its subtree; returns its index.
@@ -155,7 +137,10 @@ class Collapser {
       node.bounds[a].set(static_cast<int>(slot), n.bmin[a]);
       node.bounds[3 + a].set(static_cast<int>(slot), n.bmax[a]);
     }
-    if (n.count > 0u) node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), packets_of_leaf(n)};
+    if (n.count > 0u) {
+      node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), packets_of_leaf(n)};
+      if (leaf_packets_ != nullptr) (*leaf_packets_)[binary] = node.slot[slot].child;
+    }
   }
 
   // Packs leaf triangles [first, first + count); returns the first packet.
@@ -183,52 +168,11 @@ class Collapser {
   const Bvh& bvh_;
   WideBvh& wide_;
   CollapseSize cursor_;
+  std::vector<std::uint32_t>* leaf_packets_;
   std::uint32_t depth_ = 0;
 };
 
 // --------------------------------------------------------------- traversal
-
-// Per-ray constants, splatted across lanes.
-struct WideRay {
-  Vec4 origin[3];
-  Vec4 inv_dir[3];
-  Vec4 tmin;
-  // Byte offsets in a WideNode of each axis's entry and exit planes' bounds.
-  std::size_t entry_plane[3];
-  std::size_t exit_plane[3];
-  // Woop, in the permuted axes kx, ky, kz of sp_make_query.
-  int k[3];
-  Vec4 origin_k[3];
-  Vec4 shear[3];
-};
-
-// Always inlined into walk(), so that sp_make_query's fields reach it in
-// registers: called, it read them back from memory, 8 bytes at a time over
-// pairs of 4-byte stores that the core cannot forward, and the stall was 9 %
-// of a CPU step (perf, bench/RESULTS.md section 14).
-SP_ALWAYS_INLINE WideRay make_wide_ray(const shader::RayQuery& q) {
-  WideRay r;
-  for (int a = 0; a < 3; ++a) {
-    r.origin[a] = splat(q.origin[a]);
-    r.inv_dir[a] = splat(q.inv_dir[a]);
-    // With lo <= hi, (lo - o) * inv <= (hi - o) * inv exactly when inv > 0
-    // (rounding is monotonic): choosing the plane by sign gives the min and
-    // max of sp_intersect_box's t0, t1 without computing both.
-    const auto lo = static_cast<std::size_t>(a) * sizeof(Vec4), hi = lo + 3u * sizeof(Vec4);
-    const bool negative = q.inv_dir[a] < 0.0f;
-    r.entry_plane[a] = negative ? hi : lo;
-    r.exit_plane[a] = negative ? lo : hi;
-  }
-  r.tmin = splat(q.tmin);
-  r.k[0] = q.kx;
-  r.k[1] = q.ky;
-  r.k[2] = q.kz;
-  for (int i = 0; i < 3; ++i) {
-    r.origin_k[i] = splat(q.origin[r.k[i]]);
-    r.shear[i] = splat(q.shear[i]);
-  }
-  return r;
-}
 
 SP_ALWAYS_INLINE Vec4 plane(const WideNode& node, std::size_t offset) {
   return *reinterpret_cast<const Vec4*>(reinterpret_cast<const char*>(node.bounds) + offset);
@@ -237,24 +181,6 @@ SP_ALWAYS_INLINE Vec4 plane(const WideNode& node, std::size_t offset) {
 // Distances of the four slots' entry planes on axis `a`.
 SP_ALWAYS_INLINE Vec4 slab_entry(const WideRay& r, const WideNode& node, int a) {
   return (plane(node, r.entry_plane[a]) - r.origin[a]) * r.inv_dir[a];
-}
-
-// sp_box_far_margin. kBehind: the ray's window starts behind its origin
-// (tmin < 0, the matter query), where an exit distance may be negative.
-// With tmin >= 0 a negative exit misses under either scaling (tnear >= 0),
-// so the walks that start at the origin keep the one multiply.
-// The larger of the two products is the one sp_box_far_margin picks by the
-// sign (rounding is monotonic); the two multiplies run side by side, so
-// the look-back adds one max to each node's chain rather than a compare
-// and a blend. NaN lanes stay NaN.
-template <bool kBehind>
-SP_ALWAYS_INLINE Vec4 far_margin(Vec4 tfar) {
-  if (!kBehind) return tfar * splat(kBoxMargin);
-  return vmax(tfar * splat(kBoxMarginBehind), tfar * splat(kBoxMargin));
-}
-template <bool kBehind>
-SP_ALWAYS_INLINE float far_margin(float tfar) {
-  return tfar * (kBehind && tfar < 0.0f ? kBoxMarginBehind : kBoxMargin);
 }
 
 // sp_intersect_box on the four slots with limit `tmax`: returns the lanes
@@ -284,15 +210,6 @@ SP_ALWAYS_INLINE unsigned intersect_boxes(const WideRay& r, std::uint32_t parall
   const Vec4 tfar = vmin(vmin(exit[0], exit[1]), vmin(splat(tmax), exit[2]));
   return lane_mask(tnear <= far_margin<kBehind>(tfar));
 }
-
-// Keeps the compiler from turning a branch into conditional moves
-// (predicted_slot). MSVC has no inline assembly on x64; its build may merge
-// the branches, which changes the speed, not the answer.
-#if defined(__GNUC__) || defined(__clang__)
-#define SP_KEEP_BRANCH() asm volatile("")
-#else
-#define SP_KEEP_BRANCH() ((void)0)
-#endif
 
 // node.slot[lane] for the lane set in one-hot mask `lane_bit`, chosen by
 // branches rather than read at a computed index. The branch predictor then
@@ -331,78 +248,6 @@ SP_ALWAYS_INLINE std::uint32_t first_pair(const WideRay& r, const WideNode& node
     parent = vmax(parent, vmin(shuffle_yxwz(e), e));
   }
   return parent[0] <= parent[2] ? 0u : 2u;
-}
-
-// What a walk collects. Its limit() is the farthest distance still worth
-// visiting, which only ever shrinks; offer() takes a hit with t in
-// (tmin, limit()].
-
-// The best hit so far, with sp_closest_hit's acceptance rule.
-struct Best {
-  HitInfo hit;
-  const BvhTriangle* triangles;
-
-  float limit() const { return hit.t; }
-  std::uint32_t scene(std::uint32_t triangle) const {
-    return triangle == SP_INVALID ? SP_INVALID : triangles[triangle].scene_index;
-  }
-  // The scene index is read only for an exact tie, where sp_better_hit
-  // needs it.
-  void offer(float t, std::uint32_t triangle) {
-    if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle};
-  }
-};
-
-// The nearest hits, with sp_nearest_hits' list, keys and limit.
-struct Nearest {
-  shader::HitList list;
-  float tmax;
-  glm::vec3 dir;
-  const BvhTriangle* triangles;
-
-  float limit() const { return shader::sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax); }
-  void offer(float t, std::uint32_t triangle) {
-    const BvhTriangle& tri = triangles[triangle];
-    shader::sp_hit_list_offer(list, t, triangle, tri.solid * 4u + shader::sp_crossing(tri.normal, dir));
-  }
-};
-
-// sp_intersect_triangle on `count` packets, then the acceptance window
-// (tmin, limit] and the collector's rule. Every line mirrors the shared
-// function operation for operation, so each lane's t is bit-identical to it.
-template <class Collector>
-SP_ALWAYS_INLINE void intersect_packets(const WideRay& r, const TrianglePacket* packets, std::uint32_t count,
-                                        Collector& best) {
-  const Vec4 zero = splat(0.0f);
-  for (const TrianglePacket* p = packets; p != packets + count; ++p) {
-    // a = v0 - origin, b = v1 - origin, c = v2 - origin, in the axes kx, ky, kz.
-    Vec4 d[3][3];
-    for (int vertex = 0; vertex < 3; ++vertex)
-      for (int i = 0; i < 3; ++i) d[vertex][i] = p->v[vertex][r.k[i]] - r.origin_k[i];
-    const Vec4 ax = d[0][0] - r.shear[0] * d[0][2];
-    const Vec4 ay = d[0][1] - r.shear[1] * d[0][2];
-    const Vec4 bx = d[1][0] - r.shear[0] * d[1][2];
-    const Vec4 by = d[1][1] - r.shear[1] * d[1][2];
-    const Vec4 cx = d[2][0] - r.shear[0] * d[2][2];
-    const Vec4 cy = d[2][1] - r.shear[1] * d[2][2];
-    const Vec4 u = cx * by - cy * bx;
-    const Vec4 v = ax * cy - ay * cx;
-    const Vec4 w = bx * ay - by * ax;
-    const Int4 outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
-    const Vec4 det = u + v + w;
-    const Vec4 az = r.shear[2] * d[0][2];
-    const Vec4 bz = r.shear[2] * d[1][2];
-    const Vec4 cz = r.shear[2] * d[2][2];
-    const Vec4 t_scaled = u * az + v * bz + w * cz;
-    const Vec4 t = t_scaled / det;  // lanes with det == 0 are masked below
-    // t <= limit <= tmax stands for t <= tmax; the tie needs offer().
-    const Int4 candidate =
-        and_not(outside, (det != zero) & (t < splat(SP_FAR)) & (t > r.tmin) & (t <= splat(best.limit())));
-    for (unsigned m = lane_mask(candidate); m != 0u; m &= m - 1u) {
-      const auto lane = static_cast<unsigned>(std::countr_zero(m));
-      if (t[lane] <= best.limit()) best.offer(t[lane], p->triangle[lane]);
-    }
-  }
 }
 
 // Starts loading what every slot of `node` leads to, hit or not, before its
@@ -481,32 +326,29 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
     } else {
       intersect_packets(ray, packets + item.child, item.count, best);
     }
-    // Pop, skipping slots that a closer hit has since ruled out: re-testing
-    // the box with the new limit would give the same entry distance, and
-    // far_margin(min(exit, limit)) is below it exactly when
-    // far_margin(limit) is (far_margin is monotonic).
-    const float limit = far_margin<kBehind>(best.limit());
-    for (;;) {
-      if (size == 0u) return;
-      --size;
-      if (stack[size].t <= limit) break;
-    }
+    if (!pop_live<kBehind>(stack, size, best.limit())) return;
     item = stack[size].slot;
   }
 }
 
 }  // namespace
 
-WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
-  assert(!bvh.nodes.empty());
-  WideBvh wide;
+namespace {
+
+// The 4-wide collapse. With `for_wide8`, and a tree of at most
+// kWide8MaxTreeBytes, `leaf_packets` gets each binary leaf's first packet
+// for the 8-wide collapse; else it stays empty, and a large tree's build
+// does not pay for it.
+void collapse_wide4(const Bvh& bvh, BuildWorkers* workers, bool for_wide8, std::vector<std::uint32_t>& leaf_packets,
+                    WideBvh& wide) {
   if (bvh.nodes[0].count > 0u) {
     wide.nodes.resize(1u);
     wide.packets.resize(packets_of_leaf(bvh.nodes[0]));
-    Collapser collapser(bvh, wide, {});
+    if (for_wide8) leaf_packets.assign(1u, SP_INVALID);
+    Collapser collapser(bvh, wide, {}, for_wide8 ? &leaf_packets : nullptr);
     collapser.collapse_leaf_root();
     wide.depth = collapser.depth();
-    return wide;
+    return;
   }
   // Laid out as one serial collapse writes it: the root's node and its leaf
   // slots' packets, then the subtree of each interior slot in slot order.
@@ -525,10 +367,14 @@ WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
     total.nodes += size.nodes;
     total.packets += size.packets;
   }
+  const std::size_t bytes =
+      std::size_t{total.nodes} * sizeof(WideNode) + std::size_t{total.packets} * sizeof(TrianglePacket);
+  if (for_wide8 && bytes <= kWide8MaxTreeBytes) leaf_packets.assign(bvh.nodes.size(), SP_INVALID);
+  std::vector<std::uint32_t>* const leaf_packets_out = leaf_packets.empty() ? nullptr : &leaf_packets;
   wide.nodes.resize(total.nodes);
   wide.packets.resize(total.packets);
 
-  Collapser root(bvh, wide, {});
+  Collapser root(bvh, wide, {}, leaf_packets_out);
   root.write_node(0u, 1u, slots);
   wide.depth = root.depth();
   // The subtrees write disjoint parts of the arrays, so they may run on
@@ -538,7 +384,7 @@ WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
     if (interior(s)) wide.nodes[0].slot[s].child = start[s].nodes;
   auto collapse_subtree = [&](std::uint32_t s) {
     if (!interior(s)) return;
-    Collapser collapser(bvh, wide, start[s]);
+    Collapser collapser(bvh, wide, start[s], leaf_packets_out);
     collapser.collapse(slots[s], 2u);
     subtree_depth[s] = collapser.depth();
   };
@@ -550,6 +396,19 @@ WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
   };
   forks.run_both([&] { collapse_pair(2u); }, [&] { collapse_pair(0u); });
   for (std::uint32_t s = 0; s < kWideArity; ++s) wide.depth = std::max(wide.depth, subtree_depth[s]);
+}
+
+}  // namespace
+
+WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
+  assert(!bvh.nodes.empty());
+  WideBvh wide;
+  // Where the 8-wide walk runs, both trees (up to the 8-wide one's size):
+  // the 8-wide one for it, the 4-wide one for the walks that
+  // select_wide_walk may choose instead.
+  std::vector<std::uint32_t> leaf_packets;
+  collapse_wide4(bvh, workers, wide8::cpu_runs(), leaf_packets, wide);
+  if (!leaf_packets.empty()) wide8::collapse(bvh, leaf_packets, wide);
   return wide;
 }
 
@@ -572,7 +431,7 @@ SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir,
                            Collector& collector) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   const WideRay ray = make_wide_ray(q);
-  const bool large = wide.bytes() > kPrefetchTreeBytes;
+  const bool large = wide.wide4_bytes() > kPrefetchTreeBytes;
   if (q.tmin < 0.0f) {
     walk_from<true>(wide, ray, q.parallel_axes, large, collector);
   } else {
@@ -580,8 +439,7 @@ SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir,
   }
 }
 
-// The two queries' bodies, inlined into the baseline entry points (the
-// public functions below) and into the AVX-512 ones.
+// The two queries' bodies on the 4-wide tree (the baseline walk).
 SP_ALWAYS_INLINE HitInfo closest_hit_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                         float tmin, float tmax) {
   Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
@@ -614,21 +472,15 @@ bool cpu_runs(WideWalk walk) {
     case WideWalk::Baseline:
       return true;
     case WideWalk::Avx512:
-#if defined(SP_WIDE_AVX512)
-      __builtin_cpu_init();
-      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
-             __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-#else
-      return false;
-#endif
+    case WideWalk::Avx512Wide8:
+      return wide8::cpu_runs();  // the same CPUs and builds
   }
   return false;
 }
 
 // The walk in use: the fastest this CPU runs, until select_wide_walk.
 std::atomic<WideWalk>& selected() {
-  static std::atomic<WideWalk> walk{cpu_runs(WideWalk::Avx512) ? WideWalk::Avx512 : WideWalk::Baseline};
+  static std::atomic<WideWalk> walk{cpu_runs(WideWalk::Avx512Wide8) ? WideWalk::Avx512Wide8 : WideWalk::Baseline};
   return walk;
 }
 
@@ -644,11 +496,29 @@ bool select_wide_walk(WideWalk walk) {
 
 WideWalk selected_wide_walk() { return selected().load(std::memory_order_relaxed); }
 
-const char* wide_walk_name(WideWalk walk) { return walk == WideWalk::Avx512 ? "avx512" : "baseline"; }
+const char* wide_walk_name(WideWalk walk) {
+  switch (walk) {
+    case WideWalk::Baseline:
+      return "baseline";
+    case WideWalk::Avx512:
+      return "avx512";
+    case WideWalk::Avx512Wide8:
+      return "avx512-8wide";
+  }
+  return "?";
+}
 
 HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
 #if defined(SP_WIDE_AVX512)
-  if (selected_wide_walk() == WideWalk::Avx512) return closest_hit_avx512(wide, bvh, origin, dir, tmin, tmax);
+  switch (selected_wide_walk()) {
+    case WideWalk::Avx512Wide8:
+      if (!wide.nodes8.empty()) return wide8::closest_hit(wide, bvh, origin, dir, tmin, tmax);
+      [[fallthrough]];
+    case WideWalk::Avx512:
+      return closest_hit_avx512(wide, bvh, origin, dir, tmin, tmax);
+    case WideWalk::Baseline:
+      break;
+  }
 #endif
   return closest_hit_in(wide, bvh, origin, dir, tmin, tmax);
 }
@@ -656,7 +526,15 @@ HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, 
 shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                                   float tmax) {
 #if defined(SP_WIDE_AVX512)
-  if (selected_wide_walk() == WideWalk::Avx512) return nearest_hits_avx512(wide, bvh, origin, dir, tmin, tmax);
+  switch (selected_wide_walk()) {
+    case WideWalk::Avx512Wide8:
+      if (!wide.nodes8.empty()) return wide8::nearest_hits(wide, bvh, origin, dir, tmin, tmax);
+      [[fallthrough]];
+    case WideWalk::Avx512:
+      return nearest_hits_avx512(wide, bvh, origin, dir, tmin, tmax);
+    case WideWalk::Baseline:
+      break;
+  }
 #endif
   return nearest_hits_in(wide, bvh, origin, dir, tmin, tmax);
 }

@@ -1,7 +1,9 @@
 // CPU-only 4-wide BVH, collapsed from the binary sp::Bvh that the GPU
 // traverses, so the CPU backend tests four boxes (or four triangles) with one
 // SIMD instruction per slab: ~10 wide nodes per cast on scenes/level.gltf
-// instead of ~38 binary ones.
+// instead of ~38 binary ones. On CPUs with AVX-512 an 8-wide copy of the
+// same tree (three binary levels per node, WideNode8) is walked instead,
+// eight boxes per 256-bit instruction; everything below holds for it alike.
 //
 // References: Wald, Benthin, Boulos, "Getting Rid of Packets: Efficient SIMD
 // Single-Ray Traversal using Multi-branching BVHs", IEEE Symposium on
@@ -29,8 +31,8 @@
 //    from the binary walk (the near-ties of test_bvh.cpp) it hides it here
 //    too. Ordering slots by their own entry distance alone would not: it
 //    changes which hits are known when a box is tested. Hence the fixed
-//    two-level collapse below rather than Wald's widest-first one: it keeps
-//    the binary order computable from the slots.
+//    two-level (three-level) collapse below rather than Wald's widest-first
+//    one: it keeps the binary order computable from the slots.
 // tests/test_wide_bvh.cpp compares the two walks on many rays.
 #pragma once
 
@@ -86,6 +88,24 @@ struct alignas(32) TrianglePacket {
 };
 static_assert(sizeof(TrianglePacket) == 160);
 
+// Children per node of the 8-wide tree that the AVX-512 walk takes
+// (wide8_walk.cpp): three binary levels per node, so a descent through a
+// finely tessellated wall takes a third fewer nodes than four at a time.
+inline constexpr std::uint32_t kWide8Arity = 8;
+
+// One node of the 8-wide tree, 256 bytes (four cache lines). It replaces
+// binary interior node N: slot 4g + 2h + k holds child k of grandchild h of
+// child g of N (0: left); a grandchild that is a leaf sits alone in slot
+// 4g + 2h, a child that is a leaf alone in slot 4g. Unused slots hold NaN
+// bounds and miss, as in WideNode. Leaf slots point into WideBvh::packets,
+// which both trees share. Bounds are float rows of eight lanes: one 256-bit
+// register per plane.
+struct alignas(64) WideNode8 {
+  float bounds[6][kWide8Arity];  // lo.x lo.y lo.z hi.x hi.y hi.z, one lane per slot
+  WideSlot slot[kWide8Arity];
+};
+static_assert(sizeof(WideNode8) == 256);
+
 // Walks of trees larger than this prefetch each node's children while its
 // boxes are tested (wide_bvh.cpp, prefetch_slots). On the 2-vCPU AMD EPYC of
 // bench/RESULTS.md (1 MiB L2 per core) prefetching made trees of 1-2 MiB
@@ -93,12 +113,27 @@ static_assert(sizeof(TrianglePacket) == 160);
 // (section 13: level_big's 27 MiB 1.0x, 100k triangles 1.36x, 1M 1.5x).
 inline constexpr std::size_t kPrefetchTreeBytes = std::size_t{4} << 20;
 
+// The 8-wide tree is built only for trees whose 4-wide nodes and packets
+// take at most this much. Past it the walk waits on memory more than on
+// its own instructions, and the 4-wide walk, reading two cache lines per
+// node rather than four and prefetching, was faster on the benchmark VM:
+// at 1M triangles (65 MB) 12-15 % faster on one thread; at 252k (15 MB)
+// the 8-wide walk was 6 % faster (bench/RESULTS.md section 23).
+inline constexpr std::size_t kWide8MaxTreeBytes = std::size_t{32} << 20;
+
 struct WideBvh {
   LargeArray<WideNode> nodes;  // nodes[0] is the root; children after their parent
   LargeArray<TrianglePacket> packets;
   std::uint32_t depth = 0;  // wide levels, root included; <= the binary depth
+  // The 8-wide tree over the same packets, built where this CPU runs the
+  // 8-wide walk (wide_walk_available) and wide4_bytes() is at most
+  // kWide8MaxTreeBytes; empty elsewhere.
+  LargeArray<WideNode8> nodes8;
+  std::uint32_t depth8 = 0;  // its levels, root included
 
-  std::size_t bytes() const { return nodes.size() * sizeof(WideNode) + packets.size() * sizeof(TrianglePacket); }
+  // The 4-wide tree's nodes and packets, and all of it.
+  std::size_t wide4_bytes() const { return nodes.size() * sizeof(WideNode) + packets.size() * sizeof(TrianglePacket); }
+  std::size_t bytes() const { return wide4_bytes() + nodes8.size() * sizeof(WideNode8); }
 };
 
 class BuildWorkers;
@@ -121,8 +156,15 @@ shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3
 // The compiled copies of the walk above. Every one gives the same answer
 // bit for bit; tests/test_wide_bvh.cpp checks each this CPU runs.
 enum class WideWalk {
-  Baseline,  // SSE2 on x86-64, NEON on Arm, scalar lanes elsewhere
-  Avx512,    // x86-64 with AVX-512 F/VL/BW/DQ and AVX2/BMI2, GCC and Clang builds
+  // The 4-wide tree: SSE2 on x86-64, NEON on Arm, scalar lanes elsewhere.
+  Baseline,
+  // The 4-wide tree, the same source compiled for x86-64 with AVX-512
+  // F/VL/BW/DQ and AVX2/BMI2 (GCC and Clang builds): EVEX encodings and 32
+  // vector registers.
+  Avx512,
+  // The 8-wide tree (nodes8) in 256-bit registers, on the same CPUs and
+  // builds as Avx512; on a tree without nodes8 (a large one), Avx512.
+  Avx512Wide8,
 };
 
 // Whether this build has `walk` and this CPU runs it.
