@@ -62,6 +62,17 @@ void slots_of(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWide
   }
 }
 
+// How many 8-wide nodes the collapse of binary interior node `binary`'s
+// subtree writes: the same recursion, counting.
+std::size_t count_nodes8(const Bvh& bvh, std::uint32_t binary) {
+  std::uint32_t slots[kWide8Arity];
+  slots_of(bvh, binary, slots);
+  std::size_t count = 1u;
+  for (const std::uint32_t slot : slots)
+    if (slot != SP_INVALID && bvh.nodes[slot].count == 0u) count += count_nodes8(bvh, slot);
+  return count;
+}
+
 class Collapser8 {
  public:
   Collapser8(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, WideBvh& wide)
@@ -355,8 +366,9 @@ void collapse(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, Wi
   assert(!bvh.nodes.empty());
   wide.nodes8.clear();
   wide.depth8 = 0;
-  // One 8-wide node per binary interior node at most: no reallocation.
-  wide.nodes8.reserve((bvh.nodes.size() + 1u) / 2u);
+  // Sized first, so that the array takes what the tree needs: the upper
+  // bound, one node per binary interior node, is about four times that.
+  wide.nodes8.reserve(bvh.nodes[0].count > 0u ? 1u : count_nodes8(bvh, 0u));
   Collapser8 collapser(bvh, leaf_packets, wide);
   if (bvh.nodes[0].count > 0u) {
     collapser.collapse_leaf_root();
