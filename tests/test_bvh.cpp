@@ -437,8 +437,11 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
                              serial.wide->packets.size() * sizeof(sp::TrianglePacket)));
     EXPECT_EQ(other.wide->depth8, serial.wide->depth8);
     ASSERT_EQ(other.wide->nodes8.size(), serial.wide->nodes8.size());
-    EXPECT_EQ(0, std::memcmp(other.wide->nodes8.data(), serial.wide->nodes8.data(),
-                             serial.wide->nodes8.size() * sizeof(sp::WideNode8)));
+    // Empty where the CPU has no AVX-512: memcmp must not see its null data().
+    if (!serial.wide->nodes8.empty()) {
+      EXPECT_EQ(0, std::memcmp(other.wide->nodes8.data(), serial.wide->nodes8.data(),
+                               serial.wide->nodes8.size() * sizeof(sp::WideNode8)));
+    }
   }
   check_invariants(serial, soup, {});
 }

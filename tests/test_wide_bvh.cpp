@@ -410,7 +410,7 @@ TEST(WideBvh, FaceJustBehindTheOriginInAFlatLeafIsFound) {
 TEST(WideBvh, LargeTreesMatchBinary) {
   Soup soup = make_random_soup(64000, 31);
   sp::Bvh bvh = soup.build();
-  ASSERT_GT(bvh.wide->bytes(), sp::kPrefetchTreeBytes);
+  ASSERT_GT(bvh.wide->wide4_bytes(), sp::kPrefetchTreeBytes);
   check_wide_invariants(bvh);
   Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-12), vec3(12), 6000, 32), 33));
   EXPECT_GT(a.hits, 3000u);

@@ -367,7 +367,7 @@ void collapse(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, Wi
   wide.nodes8.clear();
   wide.depth8 = 0;
   // Sized first, so that the array takes what the tree needs: the upper
-  // bound, one node per binary interior node, is about four times that.
+  // bound, one node per binary interior node, is up to seven times that.
   wide.nodes8.reserve(bvh.nodes[0].count > 0u ? 1u : count_nodes8(bvh, 0u));
   Collapser8 collapser(bvh, leaf_packets, wide);
   if (bvh.nodes[0].count > 0u) {
