@@ -221,8 +221,8 @@ int run(const CommandLine& cli, const Options& options) {
       // Which tree the CPU walk takes: the 8-wide one exists only up to
       // sp::kWide8MaxTreeBytes.
       constexpr double kMiB = 1024.0 * 1024.0;
-      std::printf("  CPU walk %s; 4-wide nodes and packets %.1f MiB, 8-wide nodes %.1f MiB%s\n",
-                  spbench::cpu_walk_name(), static_cast<double>(wide->wide4_bytes()) / kMiB,
+      std::printf("  CPU trees: 4-wide nodes and packets %.1f MiB, 8-wide nodes %.1f MiB%s\n",
+                  static_cast<double>(wide->wide4_bytes()) / kMiB,
                   static_cast<double>(wide->nodes8.size() * sizeof(sp::WideNode8)) / kMiB,
                   wide->nodes8.empty() ? " (none: the 4-wide tree is walked)" : "");
     }

@@ -44,7 +44,8 @@ using namespace wide_walk;
 // ---------------------------------------------------------------- collapse
 
 // The slots of the 8-wide node that replaces binary interior node `binary`
-// (the layout of WideNode8); SP_INVALID where unused.
+// (the layout of WideNode8): slots 4g to 4g + 3 are the 4-wide node's
+// slots of child g, or child g alone in slot 4g when it is a leaf.
 void slots_of(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWide8Arity]) {
   std::fill(std::begin(slots), std::end(slots), SP_INVALID);
   for (std::uint32_t g = 0; g < 2u; ++g) {
@@ -53,12 +54,9 @@ void slots_of(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWide
       slots[4u * g] = child;
       continue;
     }
-    for (std::uint32_t h = 0; h < 2u; ++h) {
-      const std::uint32_t grandchild = bvh.nodes[child].left_or_first + h;
-      const BvhNode& n = bvh.nodes[grandchild];
-      slots[4u * g + 2u * h] = n.count > 0u ? grandchild : n.left_or_first;
-      if (n.count == 0u) slots[4u * g + 2u * h + 1u] = n.left_or_first + 1u;
-    }
+    std::uint32_t quad[kWideArity];
+    wide_slots(bvh, child, quad);
+    std::copy(std::begin(quad), std::end(quad), slots + 4u * g);
   }
 }
 
@@ -118,7 +116,7 @@ class Collapser8 {
       node.bounds[a][slot] = n.bmin[a];
       node.bounds[3 + a][slot] = n.bmax[a];
     }
-    if (n.count > 0u) node.slot[slot] = WideSlot{leaf_packets_[binary], (n.count + kWideArity - 1u) / kWideArity};
+    if (n.count > 0u) node.slot[slot] = WideSlot{leaf_packets_[binary], packets_of_leaf(n)};
   }
 
   const Bvh& bvh_;
@@ -224,7 +222,7 @@ SP_ALWAYS_INLINE WideSlot predicted_slot8(const WideNode8& node, unsigned lane_b
 // monotonic, so on each axis its entry plane's distance is the smallest of
 // its slots' (first_pair in wide_bvh.cpp, one level up). A half's first
 // slot is always used, so the NaN of an unused one (the first operand of
-// _mm256_min_ps) never wins. Returns how many slots `order` holds.
+// _mm256_min_ps) never wins. order_hits fills an Ordered with them.
 struct Ordered {
   std::uint32_t slot[kWide8Arity] = {};
   std::uint32_t count = 0;
@@ -379,16 +377,14 @@ void collapse(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, Wi
 
 SP_TARGET_WIDE8 HitInfo closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                                     float tmax) {
-  Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
+  Best best = Best::start(bvh, tmax);
   walk8(wide, origin, dir, tmin, tmax, best);
   return best.hit;
 }
 
 SP_TARGET_WIDE8 shader::HitList nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                              float tmin, float tmax) {
-  Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
-  nearest.list.count = 0u;
-  nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
+  Nearest nearest = Nearest::start(bvh, dir, tmax);
   walk8(wide, origin, dir, tmin, tmax, nearest);
   return nearest.list;
 }

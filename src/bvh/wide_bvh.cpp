@@ -27,24 +27,8 @@ constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
 
 // ---------------------------------------------------------------- collapse
 
-// The slots of the wide node that replaces binary interior node `binary`:
-// slots 2g and 2g + 1 hold the children of child g of `binary` (g = 0:
-// left), or child g itself in slot 2g when it is a leaf; SP_INVALID where
-// unused.
-void wide_slots(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWideArity]) {
-  for (std::uint32_t s = 0; s < kWideArity; ++s) slots[s] = SP_INVALID;
-  for (std::uint32_t g = 0; g < 2u; ++g) {
-    const std::uint32_t child = bvh.nodes[binary].left_or_first + g;
-    const BvhNode& n = bvh.nodes[child];
-    slots[2u * g] = n.count > 0u ? child : n.left_or_first;
-    if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
-  }
-}
-
 // Whether slot entry `slot` (from wide_slots) leads to another wide node.
 bool is_interior_slot(const Bvh& bvh, std::uint32_t slot) { return slot != SP_INVALID && bvh.nodes[slot].count == 0u; }
-
-std::uint32_t packets_of_leaf(const BvhNode& leaf) { return (leaf.count + kWideArity - 1u) / kWideArity; }
 
 // What the collapse of a binary subtree writes: its wide nodes and packets.
 struct CollapseSize {
@@ -442,16 +426,14 @@ SP_ALWAYS_INLINE void walk(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir,
 // The two queries' bodies on the 4-wide tree (the baseline walk).
 SP_ALWAYS_INLINE HitInfo closest_hit_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                         float tmin, float tmax) {
-  Best best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()};
+  Best best = Best::start(bvh, tmax);
   walk(wide, origin, dir, tmin, tmax, best);
   return best.hit;
 }
 
 SP_ALWAYS_INLINE shader::HitList nearest_hits_in(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                                  float tmin, float tmax) {
-  Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
-  nearest.list.count = 0u;
-  nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
+  Nearest nearest = Nearest::start(bvh, dir, tmax);
   walk(wide, origin, dir, tmin, tmax, nearest);
   return nearest.list;
 }

@@ -1,7 +1,8 @@
-// The parts the two wide walks share (wide_bvh.cpp's 4-wide one and
-// wide8_walk.cpp's 8-wide one): the ray's constants, the box margin, the
-// collectors of hits and the triangle test on packets. Internal to the bvh
-// module; see wide_bvh.h for what the walks promise.
+// The parts the two wide trees and their walks share (wide_bvh.cpp's
+// 4-wide ones and wide8_walk.cpp's 8-wide ones): the slot layout and
+// packet count of the collapse, the ray's constants, the box margin, the
+// collectors of hits, the triangle test on packets and the stack's pop.
+// Internal to the bvh module; see wide_bvh.h for what the walks promise.
 #pragma once
 
 #include <bit>
@@ -18,6 +19,24 @@
 // alternating runs on the benchmark VM (bench/RESULTS.md section 23).
 namespace sp::wide_walk {
 namespace {
+
+// The slots of the 4-wide node that replaces binary interior node
+// `binary`: slots 2g and 2g + 1 hold the children of child g of `binary`
+// (g = 0: left), or child g itself in slot 2g when it is a leaf;
+// SP_INVALID where unused. (An 8-wide node's slots 4g to 4g + 3 are these
+// slots of its child g.)
+inline void wide_slots(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWideArity]) {
+  for (std::uint32_t s = 0; s < kWideArity; ++s) slots[s] = SP_INVALID;
+  for (std::uint32_t g = 0; g < 2u; ++g) {
+    const std::uint32_t child = bvh.nodes[binary].left_or_first + g;
+    const BvhNode& n = bvh.nodes[child];
+    slots[2u * g] = n.count > 0u ? child : n.left_or_first;
+    if (n.count == 0u) slots[2u * g + 1u] = n.left_or_first + 1u;
+  }
+}
+
+// The packets (TrianglePacket) a binary leaf's triangles fill.
+inline std::uint32_t packets_of_leaf(const BvhNode& leaf) { return (leaf.count + kWideArity - 1u) / kWideArity; }
 
 // sp_box_far_margin's scalings of a box's exit distance: a positive one
 // and a negative one, behind the origin.
@@ -121,6 +140,9 @@ struct Best {
   HitInfo hit;
   const BvhTriangle* triangles;
 
+  // No hit yet within tmax.
+  static Best start(const Bvh& bvh, float tmax) { return Best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()}; }
+
   float limit() const { return hit.t; }
   std::uint32_t scene(std::uint32_t triangle) const {
     return triangle == SP_INVALID ? SP_INVALID : triangles[triangle].scene_index;
@@ -138,6 +160,14 @@ struct Nearest {
   float tmax;
   glm::vec3 dir;
   const BvhTriangle* triangles;
+
+  // An empty list, as sp_nearest_hits starts it.
+  static Nearest start(const Bvh& bvh, glm::vec3 dir, float tmax) {
+    Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
+    nearest.list.count = 0u;
+    nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
+    return nearest;
+  }
 
   float limit() const { return shader::sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax); }
   void offer(float t, std::uint32_t triangle) {
