@@ -25,7 +25,7 @@ namespace sp::wide8 {
 #if !defined(SP_WIDE_AVX512)
 
 bool cpu_runs() { return false; }
-void collapse(const Bvh&, const std::vector<std::uint32_t>&, WideBvh&) { assert(false); }
+void collapse(const Bvh&, std::span<const std::uint32_t>, std::uint32_t, WideBvh&) { assert(false); }
 HitInfo closest_hit(const WideBvh&, const Bvh&, glm::vec3, glm::vec3, float, float tmax) {
   assert(false);
   return HitInfo{tmax, SP_INVALID};
@@ -60,20 +60,9 @@ void slots_of(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slots)[kWide
   }
 }
 
-// How many 8-wide nodes the collapse of binary interior node `binary`'s
-// subtree writes: the same recursion, counting.
-std::size_t count_nodes8(const Bvh& bvh, std::uint32_t binary) {
-  std::uint32_t slots[kWide8Arity];
-  slots_of(bvh, binary, slots);
-  std::size_t count = 1u;
-  for (const std::uint32_t slot : slots)
-    if (slot != SP_INVALID && bvh.nodes[slot].count == 0u) count += count_nodes8(bvh, slot);
-  return count;
-}
-
 class Collapser8 {
  public:
-  Collapser8(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, WideBvh& wide)
+  Collapser8(const Bvh& bvh, std::span<const std::uint32_t> leaf_packets, WideBvh& wide)
       : bvh_(bvh), leaf_packets_(leaf_packets), wide_(wide) {}
 
   // Binary interior node `binary` and its subtree, depth first, children
@@ -120,7 +109,7 @@ class Collapser8 {
   }
 
   const Bvh& bvh_;
-  const std::vector<std::uint32_t>& leaf_packets_;
+  std::span<const std::uint32_t> leaf_packets_;
   WideBvh& wide_;
 };
 
@@ -360,13 +349,13 @@ bool cpu_runs() {
          __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
 }
 
-void collapse(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, WideBvh& wide) {
+void collapse(const Bvh& bvh, std::span<const std::uint32_t> leaf_packets, std::uint32_t nodes, WideBvh& wide) {
   assert(!bvh.nodes.empty());
   wide.nodes8.clear();
   wide.depth8 = 0;
   // Sized first, so that the array takes what the tree needs: the upper
   // bound, one node per binary interior node, is up to seven times that.
-  wide.nodes8.reserve(bvh.nodes[0].count > 0u ? 1u : count_nodes8(bvh, 0u));
+  wide.nodes8.reserve(std::max(nodes, 1u));
   Collapser8 collapser(bvh, leaf_packets, wide);
   if (bvh.nodes[0].count > 0u) {
     collapser.collapse_leaf_root();

@@ -3,7 +3,7 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include <span>
 
 #include "bvh/wide_bvh.h"
 
@@ -14,8 +14,9 @@ bool cpu_runs();
 
 // Collapses `bvh` three binary levels per node into wide.nodes8 and sets
 // wide.depth8. `leaf_packets[n]` is the first packet of binary leaf n in
-// wide.packets, as the 4-wide collapse wrote them. Precondition: cpu_runs().
-void collapse(const Bvh& bvh, const std::vector<std::uint32_t>& leaf_packets, WideBvh& wide);
+// wide.packets; `nodes` is how many 8-wide nodes that makes (one per binary
+// interior node at a depth divisible by three). Precondition: cpu_runs().
+void collapse(const Bvh& bvh, std::span<const std::uint32_t> leaf_packets, std::uint32_t nodes, WideBvh& wide);
 
 // wide_closest_hit and wide_nearest_hits on wide.nodes8 (not empty).
 HitInfo closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);

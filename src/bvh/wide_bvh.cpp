@@ -1,5 +1,6 @@
-// Collapse of the binary BVH into 4-wide nodes and their single-ray SIMD
-// traversal; see wide_bvh.h for the references and the node layout.
+// The single-ray SIMD walk of the 4-wide BVH (built by wide_collapse.cpp),
+// and the choice between it and the 8-wide one; see wide_bvh.h for the
+// references and the node layout.
 //
 // Written with simd4.h's Vec4 and Int4 (one SSE2 register per Vec4 on
 // x86, NEON on ARM, four scalar lanes elsewhere), as bvh_geometry.h is.
@@ -11,7 +12,6 @@
 #include <cassert>
 #include <limits>
 
-#include "bvh/build_workers.h"
 #include "bvh/wide8_walk.h"
 #include "bvh/wide_walk_parts.h"
 #include "sp_traverse.h"
@@ -24,139 +24,6 @@ using namespace wide_walk;
 // A node pushes at most kWideArity - 1 siblings, and a path holds fewer wide
 // nodes than the binary depth, so the stack cannot overflow.
 constexpr std::uint32_t kStackSize = (kWideArity - 1u) * SP_BVH_MAX_DEPTH;
-
-// ---------------------------------------------------------------- collapse
-
-// Whether slot entry `slot` (from wide_slots) leads to another wide node.
-bool is_interior_slot(const Bvh& bvh, std::uint32_t slot) { return slot != SP_INVALID && bvh.nodes[slot].count == 0u; }
-
-// What the collapse of a binary subtree writes: its wide nodes and packets.
-struct CollapseSize {
-  std::uint32_t nodes = 0;
-  std::uint32_t packets = 0;
-};
-
-// The size of the collapse of binary interior node `binary`'s subtree,
-// walking the same slots collapse() does, so the output can be laid out
-// before it is written (and subtrees written concurrently).
-CollapseSize collapse_size(const Bvh& bvh, std::uint32_t binary) {
-  CollapseSize size{1u, 0u};
-  std::uint32_t slots[kWideArity];
-  wide_slots(bvh, binary, slots);
-  for (const std::uint32_t slot : slots) {
-    if (slot == SP_INVALID) continue;
-    const BvhNode& n = bvh.nodes[slot];
-    if (n.count > 0u) {
-      size.packets += packets_of_leaf(n);
-    } else {
-      const CollapseSize child = collapse_size(bvh, slot);
-      size.nodes += child.nodes;
-      size.packets += child.packets;
-    }
-  }
-  return size;
-}
-
-// Writes the collapse of one binary subtree into `wide`, whose arrays are
-// already sized, from the given node and packet positions on: the wide
-// nodes in depth-first order (children after their parent), each leaf's
-// packets when its slot is filled. Collapsers of disjoint subtrees, given
-// the positions a serial collapse would reach, write disjoint parts of the
-// same arrays and together write exactly what one serial collapse writes.
-class Collapser {
- public:
-  // `leaf_packets`, when given, gets each binary leaf's first packet (for
-  // the 8-wide tree, which shares them).
-  Collapser(const Bvh& bvh, WideBvh& wide, CollapseSize cursor, std::vector<std::uint32_t>* leaf_packets)
-      : bvh_(bvh), wide_(wide), cursor_(cursor), leaf_packets_(leaf_packets) {}
-
-  // The wide node of binary interior node `binary` at wide level `level`,
-  // and its subtree; returns its index.
-  std::uint32_t collapse(std::uint32_t binary, std::uint32_t level) {
-    std::uint32_t slots[kWideArity];
-    const std::uint32_t index = write_node(binary, level, slots);
-    for (std::uint32_t s = 0; s < kWideArity; ++s) {
-      if (is_interior_slot(bvh_, slots[s])) {
-        wide_.nodes[index].slot[s].child = collapse(slots[s], level + 1u);
-      }
-    }
-    return index;
-  }
-
-  // The wide node of binary interior node `binary` alone, with its leaf
-  // slots' packets; its interior slots' children are left for the caller.
-  std::uint32_t write_node(std::uint32_t binary, std::uint32_t level, std::uint32_t (&slots)[kWideArity]) {
-    depth_ = std::max(depth_, level);
-    wide_slots(bvh_, binary, slots);
-    const std::uint32_t index = cursor_.nodes++;
-    WideNode& node = wide_.nodes[index];
-    node = empty_node();
-    for (std::uint32_t s = 0; s < kWideArity; ++s)
-      if (slots[s] != SP_INVALID) fill_slot(node, s, slots[s]);
-    return index;
-  }
-
-  // The root when it is a single leaf: a wide root with one slot.
-  void collapse_leaf_root() {
-    depth_ = 1u;
-    WideNode& root = wide_.nodes[cursor_.nodes++];
-    root = empty_node();
-    fill_slot(root, 0u, 0u);
-  }
-
-  std::uint32_t depth() const { return depth_; }
-
- private:
-  static WideNode empty_node() {
-    WideNode node{};
-    for (Vec4& b : node.bounds) b = splat(std::numeric_limits<float>::quiet_NaN());
-    return node;
-  }
-
-  // Slot `slot` of `node` becomes binary node `binary`; a leaf gets its
-  // packets now, an interior node its wide index later.
-  void fill_slot(WideNode& node, std::uint32_t slot, std::uint32_t binary) {
-    const BvhNode& n = bvh_.nodes[binary];
-    for (int a = 0; a < 3; ++a) {
-      node.bounds[a].set(static_cast<int>(slot), n.bmin[a]);
-      node.bounds[3 + a].set(static_cast<int>(slot), n.bmax[a]);
-    }
-    if (n.count > 0u) {
-      node.slot[slot] = WideSlot{add_packets(n.left_or_first, n.count), packets_of_leaf(n)};
-      if (leaf_packets_ != nullptr) (*leaf_packets_)[binary] = node.slot[slot].child;
-    }
-  }
-
-  // Packs leaf triangles [first, first + count); returns the first packet.
-  std::uint32_t add_packets(std::uint32_t first, std::uint32_t count) {
-    const std::uint32_t start = cursor_.packets;
-    for (std::uint32_t base = 0; base < count; base += kWideArity) {
-      TrianglePacket p{};  // padding lanes: vertices at the origin
-      for (std::uint32_t lane = 0; lane < kWideArity; ++lane) {
-        if (base + lane >= count) {
-          p.triangle[lane] = SP_INVALID;
-          continue;
-        }
-        const std::uint32_t i = first + base + lane;
-        const BvhTriangle& t = bvh_.triangles[i];
-        const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
-        for (int k = 0; k < 3; ++k)
-          for (int a = 0; a < 3; ++a) p.v[k][a].set(static_cast<int>(lane), v[k][a]);
-        p.triangle[lane] = i;
-      }
-      wide_.packets[cursor_.packets++] = p;
-    }
-    return start;
-  }
-
-  const Bvh& bvh_;
-  WideBvh& wide_;
-  CollapseSize cursor_;
-  std::vector<std::uint32_t>* leaf_packets_;
-  std::uint32_t depth_ = 0;
-};
-
-// --------------------------------------------------------------- traversal
 
 SP_ALWAYS_INLINE Vec4 plane(const WideNode& node, std::size_t offset) {
   return *reinterpret_cast<const Vec4*>(reinterpret_cast<const char*>(node.bounds) + offset);
@@ -314,89 +181,6 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
     item = stack[size].slot;
   }
 }
-
-}  // namespace
-
-namespace {
-
-// The 4-wide collapse. With `for_wide8`, and a tree of at most
-// kWide8MaxTreeBytes, `leaf_packets` gets each binary leaf's first packet
-// for the 8-wide collapse; else it stays empty, and a large tree's build
-// does not pay for it.
-void collapse_wide4(const Bvh& bvh, BuildWorkers* workers, bool for_wide8, std::vector<std::uint32_t>& leaf_packets,
-                    WideBvh& wide) {
-  if (bvh.nodes[0].count > 0u) {
-    wide.nodes.resize(1u);
-    wide.packets.resize(packets_of_leaf(bvh.nodes[0]));
-    if (for_wide8) leaf_packets.assign(1u, SP_INVALID);
-    Collapser collapser(bvh, wide, {}, for_wide8 ? &leaf_packets : nullptr);
-    collapser.collapse_leaf_root();
-    wide.depth = collapser.depth();
-    return;
-  }
-  // Laid out as one serial collapse writes it: the root's node and its leaf
-  // slots' packets, then the subtree of each interior slot in slot order.
-  // Sizing the subtrees first tells each one where it writes.
-  std::uint32_t slots[kWideArity];
-  wide_slots(bvh, 0u, slots);
-  auto interior = [&](std::uint32_t s) { return is_interior_slot(bvh, slots[s]); };
-  CollapseSize start[kWideArity] = {};
-  CollapseSize total{1u, 0u};
-  for (std::uint32_t s = 0; s < kWideArity; ++s)
-    if (slots[s] != SP_INVALID && !interior(s)) total.packets += packets_of_leaf(bvh.nodes[slots[s]]);
-  for (std::uint32_t s = 0; s < kWideArity; ++s) {
-    if (!interior(s)) continue;
-    start[s] = total;
-    const CollapseSize size = collapse_size(bvh, slots[s]);
-    total.nodes += size.nodes;
-    total.packets += size.packets;
-  }
-  const std::size_t bytes =
-      std::size_t{total.nodes} * sizeof(WideNode) + std::size_t{total.packets} * sizeof(TrianglePacket);
-  if (for_wide8 && bytes <= kWide8MaxTreeBytes) leaf_packets.assign(bvh.nodes.size(), SP_INVALID);
-  std::vector<std::uint32_t>* const leaf_packets_out = leaf_packets.empty() ? nullptr : &leaf_packets;
-  wide.nodes.resize(total.nodes);
-  wide.packets.resize(total.packets);
-
-  Collapser root(bvh, wide, {}, leaf_packets_out);
-  root.write_node(0u, 1u, slots);
-  wide.depth = root.depth();
-  // The subtrees write disjoint parts of the arrays, so they may run on
-  // other threads.
-  std::uint32_t subtree_depth[kWideArity] = {};
-  for (std::uint32_t s = 0; s < kWideArity; ++s)
-    if (interior(s)) wide.nodes[0].slot[s].child = start[s].nodes;
-  auto collapse_subtree = [&](std::uint32_t s) {
-    if (!interior(s)) return;
-    Collapser collapser(bvh, wide, start[s], leaf_packets_out);
-    collapser.collapse(slots[s], 2u);
-    subtree_depth[s] = collapser.depth();
-  };
-  BuildWorkers serial(1u);
-  BuildWorkers& forks = workers != nullptr ? *workers : serial;
-  static_assert(kWideArity == 4u);
-  auto collapse_pair = [&](std::uint32_t first) {
-    forks.run_both([&] { collapse_subtree(first + 1u); }, [&] { collapse_subtree(first); });
-  };
-  forks.run_both([&] { collapse_pair(2u); }, [&] { collapse_pair(0u); });
-  for (std::uint32_t s = 0; s < kWideArity; ++s) wide.depth = std::max(wide.depth, subtree_depth[s]);
-}
-
-}  // namespace
-
-WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers) {
-  assert(!bvh.nodes.empty());
-  WideBvh wide;
-  // Where the 8-wide walk runs, both trees (up to the 8-wide one's size):
-  // the 8-wide one for it, the 4-wide one for the walks that
-  // select_wide_walk may choose instead.
-  std::vector<std::uint32_t> leaf_packets;
-  collapse_wide4(bvh, workers, wide8::cpu_runs(), leaf_packets, wide);
-  if (!leaf_packets.empty()) wide8::collapse(bvh, leaf_packets, wide);
-  return wide;
-}
-
-namespace {
 
 template <bool kBehind, class Collector>
 SP_ALWAYS_INLINE void walk_from(const WideBvh& wide, const WideRay& ray, std::uint32_t parallel, bool large,

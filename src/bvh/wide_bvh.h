@@ -138,8 +138,10 @@ struct WideBvh {
 
 class BuildWorkers;
 
-// Collapses `bvh`; given `workers`, the root's subtrees are offered to its
-// threads (the result is the same either way). Precondition: bvh.nodes is
+// Collapses `bvh` (wide_collapse.cpp); given `workers`, the packets, the
+// 4-wide tree's subtrees and the 8-wide tree are offered to its threads (the
+// result is the same either way). Packets follow their leaves' order in
+// bvh.nodes. Precondition: bvh.nodes is
 // not empty, and every interior node's box is exactly the union of its
 // children's, as build_bvh makes it (the traversal derives a parent's entry
 // distance from its children's).
