@@ -12,10 +12,12 @@
 // are appended as a pair, which gives the adjacency the traversal relies on
 // without a separate flattening pass; each leaf writes its triangles into
 // Bvh::triangles as it is made, so there is no gather pass after the build
-// either. Scratch memory is allocated once per build; nodes of at most
-// kSmallNode triangles, the large majority, take an exact sweep instead of
-// bins. Threads (build_workers.h, started once per build): the root's passes
-// over all triangles (binning, partition, child bounds) run as two halves,
+// either. The partition measures the children's bounds as it goes, so each
+// binned node reads its triangles twice (binning, partition). Scratch memory
+// is allocated once per build; nodes of at most kSmallNode triangles, the
+// large majority, take an exact sweep instead of bins. Threads
+// (build_workers.h, started once per build): the root's passes over all
+// triangles (binning, partition) run as two halves,
 // the subtrees near the root as tasks of their own, and the big arrays sit
 // on huge pages (large_array.h), whose first-touch faults otherwise cost
 // more than the build in a virtual machine.
@@ -137,6 +139,26 @@ struct Split {
   int axis = 0;
   std::int32_t last_left = 0;  // binned: bins [0, last_left] go left; small: left count
   float cost = 0.0f;           // A_L * N_L + A_R * N_R, not yet divided by A_parent
+};
+
+// The bounds and centroid bounds of a split node's two sides.
+struct Sides {
+  Box left, left_centroids, right, right_centroids;
+
+  void add_left(const Record& r) {
+    left.grow(r.lo, r.hi);
+    left_centroids.grow(r.lo + r.hi);
+  }
+  void add_right(const Record& r) {
+    right.grow(r.lo, r.hi);
+    right_centroids.grow(r.lo + r.hi);
+  }
+  void add(const Sides& other) {
+    left.grow(other.left);
+    left_centroids.grow(other.left_centroids);
+    right.grow(other.right);
+    right_centroids.grow(other.right_centroids);
+  }
 };
 
 // Writes each leaf's triangles into Bvh::triangles as the leaf is made, on
@@ -310,22 +332,30 @@ class Builder {
     }
 
     std::uint32_t middle;
-    if (small) {
-      apply_small_split(begin, count, split);
-      middle = begin + static_cast<std::uint32_t>(split.last_left);
-    } else if (split.valid) {
-      middle = partition(begin, end, binning, split, concurrent);
+    Sides sides;
+    if (split.valid && !small) {
+      // Only the root's partition is halved, and by its size alone, so the
+      // tree is the same for every thread count.
+      const bool halve = level == 1u && count >= kConcurrentPassMin;
+      middle = partition(begin, end, binning, split, halve, concurrent, sides);
     } else {
-      // All centroids coincide (or are too close to bin): no plane separates
-      // them, so halve the range to keep leaves within max_leaf_size.
-      middle = begin + count / 2u;
+      if (small) {
+        apply_small_split(begin, count, split);
+        middle = begin + static_cast<std::uint32_t>(split.last_left);
+      } else {
+        // All centroids coincide (or are too close to bin): no plane
+        // separates them, so halve the range to keep leaves within
+        // max_leaf_size.
+        middle = begin + count / 2u;
+      }
+      run_both(
+          *workers_, concurrent, [&] { measure(middle, end, sides.right, sides.right_centroids); },
+          [&] { measure(begin, middle, sides.left, sides.left_centroids); });
     }
-    // One pass per child for bounds and centroid bounds: cheaper than
-    // carrying them through the partition with branch-free selects.
-    Box left, right, left_centroids, right_centroids;
-    run_both(
-        *workers_, concurrent, [&] { measure(middle, end, right, right_centroids); },
-        [&] { measure(begin, middle, left, left_centroids); });
+    const Box& left = sides.left;
+    const Box& right = sides.right;
+    const Box& left_centroids = sides.left_centroids;
+    const Box& right_centroids = sides.right_centroids;
 
     const auto children = static_cast<std::uint32_t>(nodes_->size());
     (*nodes_)[node].left_or_first = children;
@@ -462,47 +492,59 @@ class Builder {
     }
   }
 
-  // In-place partition by the chosen plane; returns the first right one. A
-  // range of kParallelMin or more is partitioned as two halves (on two
-  // threads when `concurrent`), then the first half's right part and the
-  // second half's left part trade places. Which ranges are halved depends on
-  // their size alone, never on the threads, so the tree is the same for any
-  // thread count.
+  // In-place partition by the chosen plane; returns the first right one and
+  // adds each side's bounds to `sides`. With `halve`, the two halves of the
+  // range are partitioned apart (on two threads when `concurrent`), then the
+  // first half's right part and the second half's left part trade places,
+  // which a whole-range partition does not need: the caller halves only
+  // where it may run concurrently.
   std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split,
-                          bool concurrent) {
-    if (end - begin < kParallelMin) return partition_range(begin, end, binning, split);
+                          bool halve, bool concurrent, Sides& sides) {
+    if (!halve) return partition_range(begin, end, binning, split, sides);
     const std::uint32_t mid = begin + (end - begin) / 2u;
     std::uint32_t first_right = 0, second_right = 0;
+    Sides second;
     run_both(
-        *workers_, concurrent, [&] { second_right = partition_range(mid, end, binning, split); },
-        [&] { first_right = partition_range(begin, mid, binning, split); });
+        *workers_, concurrent, [&] { second_right = partition_range(mid, end, binning, split, second); },
+        [&] { first_right = partition_range(begin, mid, binning, split, sides); });
+    sides.add(second);
     // [begin, first_right) left, [first_right, mid) right, [mid,
     // second_right) left, [second_right, end) right: swap the shorter of the
-    // two middle runs with the far end of the other.
+    // two middle runs with the far end of the other, half of it on each
+    // thread.
     const std::uint32_t swapped = std::min(mid - first_right, second_right - mid);
-    std::swap_ranges(records_ptr_ + first_right, records_ptr_ + first_right + swapped,
-                     records_ptr_ + second_right - swapped);
-    std::swap_ranges(indices_ptr_ + first_right, indices_ptr_ + first_right + swapped,
-                     indices_ptr_ + second_right - swapped);
+    auto swap_part = [&](std::uint32_t from, std::uint32_t to) {
+      std::swap_ranges(records_ptr_ + first_right + from, records_ptr_ + first_right + to,
+                       records_ptr_ + second_right - swapped + from);
+      std::swap_ranges(indices_ptr_ + first_right + from, indices_ptr_ + first_right + to,
+                       indices_ptr_ + second_right - swapped + from);
+    };
+    run_both(
+        *workers_, concurrent, [&] { swap_part(swapped / 2u, swapped); }, [&] { swap_part(0u, swapped / 2u); });
     return first_right + (second_right - mid);
   }
 
-  // Branch-free Lomuto: the side test is a coin flip for the branch
-  // predictor, so every element is swapped and `middle` advances only for
-  // left ones.
-  std::uint32_t partition_range(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split) {
-    std::uint32_t middle = begin;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Record r = records_ptr_[i];
-      const std::uint32_t index = indices_ptr_[i];
-      const bool left = binning.bin(r.lo + r.hi)[split.axis] <= split.last_left;
-      records_ptr_[i] = records_ptr_[middle];
-      indices_ptr_[i] = indices_ptr_[middle];
-      records_ptr_[middle] = r;
-      indices_ptr_[middle] = index;
-      middle += left ? 1u : 0u;
+  // Hoare's partition, which moves only the records on the wrong side, each
+  // once, and measures each side's bounds on the way (the children's boxes
+  // and their binnings need them), so no record is read twice.
+  std::uint32_t partition_range(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split,
+                                Sides& sides) {
+    Sides s = sides;  // in locals: boxes behind a reference stay in memory
+    auto is_left = [&](const Record& r) { return binning.bin(r.lo + r.hi)[split.axis] <= split.last_left; };
+    std::uint32_t i = begin, j = end;  // [begin, i) left, [j, end) right
+    for (;;) {
+      while (i < j && is_left(records_ptr_[i])) s.add_left(records_ptr_[i++]);
+      while (i < j && !is_left(records_ptr_[j - 1u])) s.add_right(records_ptr_[--j]);
+      if (i >= j) break;
+      // records i (right) and j - 1 (left) trade places.
+      --j;
+      std::swap(records_ptr_[i], records_ptr_[j]);
+      std::swap(indices_ptr_[i], indices_ptr_[j]);
+      s.add_left(records_ptr_[i++]);
+      s.add_right(records_ptr_[j]);
     }
-    return middle;
+    sides = s;
+    return i;
   }
 
   LargeArray<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
@@ -546,8 +588,7 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   Builder builder(vertices, count, settings, workers, leaves, bvh);
   builder.build();
   bvh.depth = builder.depth();
-  // The CPU backend's 4-wide copy (wide_bvh.h): a sizing walk, then the
-  // collapse, ~0.3 ms of the ~2.5 ms build of scenes/level.gltf.
+  // The CPU backend's wide copies (wide_bvh.h, wide_collapse.cpp).
   bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.concurrent_pass(count) ? &workers : nullptr));
   bvh.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return bvh;
