@@ -446,12 +446,13 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
   check_invariants(serial, soup, {});
 }
 
-// Nodes of 16,384 triangles or more are partitioned as two halves whose
-// parts then trade places (and binned as two halves on the root). Whatever
-// the threads, every such node must still be split at one plane: on some
-// axis, each left child's centroid lies below each right child's (a binned
-// split sends bins <= k left, and the bin index never decreases along the
-// axis). Centroids are computed as the build does: doubled, min + max.
+// A root of 131,072 triangles or more is binned and partitioned as two
+// halves whose parts then trade places, and subtrees are built on other
+// threads. Whatever the threads, every node of 16,384 triangles or more
+// must still be split at one plane: on some axis, each left child's centroid lies below each right
+// child's (a binned split sends bins <= k left, and the bin index never
+// decreases along the axis). Centroids are computed as the build does:
+// doubled, min + max.
 TEST(Bvh, LargeNodesAreSplitAtOnePlane) {
   Soup soup = make_rooms(5, 5, 5, 6);
   const Soup random = make_random_soup(30000, 5);

@@ -17,14 +17,16 @@
 // is allocated once per build; nodes of at most kSmallNode triangles, the
 // large majority, take an exact sweep instead of bins. Threads
 // (build_workers.h, started once per build): the root's passes over all
-// triangles (binning, partition) run as two halves,
-// the subtrees near the root as tasks of their own, and the big arrays sit
-// on huge pages (large_array.h), whose first-touch faults otherwise cost
-// more than the build in a virtual machine.
+// triangles (binning, partition) run as two halves, every subtree of
+// kForkMin triangles or more is offered to the other threads as a task that
+// builds into a node run of its own (node_runs.h, placed once at the end),
+// and the big arrays sit on huge pages (large_array.h), whose first-touch
+// faults otherwise cost more than the build in a virtual machine.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -32,6 +34,7 @@
 
 #include "bvh/build_workers.h"
 #include "bvh/bvh_geometry.h"
+#include "bvh/node_runs.h"
 #include "bvh/wide_bvh.h"
 #include "bvh/bvh.h"
 
@@ -44,17 +47,22 @@ constexpr std::uint32_t kMaxBins = 256;
 // Up to this many triangles, sorting the centroids on each axis and sweeping
 // every split is cheaper than binning, and exact.
 constexpr std::uint32_t kSmallNode = 8;
-// A node this large or larger may hand its right subtree to another thread
-// (near the root only; see Builder::spawn_levels_). Smaller subtrees are not
-// worth a thread start.
+// Builds of fewer triangles run on the calling thread alone: starting a
+// thread costs more than it saves.
 constexpr std::uint32_t kParallelMin = 16384;
+// A node this large or larger hands its right subtree to the other threads
+// (Builder::subdivide_pair_in_parallel), at any depth: splits are uneven,
+// and a thread that runs out of work needs pieces left to take. Smaller
+// pieces cost more in scratch and hand-over than they save in waiting.
+// On the benchmark VM at 252k triangles, 8192 took 23.2 ms on 2 threads,
+// 16384 23.9, 65536 24.9 and 4096 25.4 (bench/RESULTS.md section 24).
+constexpr std::uint32_t kForkMin = 8192;
 // The root's passes (binning, partition, child bounds) and the wide copy's
 // subtrees go to a second thread only from this many triangles on: on the
 // benchmark VM, doing so at 30k triangles made the build 3x slower (4.7 ->
 // 15 ms; bench/RESULTS.md section 12), while at 252k and 1M it pays.
 constexpr std::uint32_t kConcurrentPassMin = 131072;
-// Subtrees are handed out down to level 9 at most (Builder::spawn_levels_):
-// 256 of them.
+// More threads than a build can keep busy only wait.
 constexpr unsigned kMaxThreads = 256;
 
 // Runs f(begin, end) over [0, count): split in two halves, one offered to
@@ -180,17 +188,11 @@ struct LeafWriter {
 
 class Builder {
  public:
-  // `workers` runs the build's forks; its size sets how far down subtrees
-  // are offered to other threads.
+  // `workers` runs the build's forks; with one thread there are none.
+  // `nodes` receives the tree.
   Builder(std::span<const glm::vec3> vertices, std::uint32_t count, const BvhBuildSettings& settings,
-          BuildWorkers& workers, const LeafWriter& leaves, Bvh& bvh)
-      : nodes_(&bvh.nodes), workers_(&workers), leaves_(&leaves) {
-    const unsigned threads = workers.size();
-    // Levels (root = 1) whose nodes may build their right subtree on another
-    // thread: enough subtrees for ~2 per thread, so an uneven split still
-    // keeps every core busy. Where the work runs never changes the output.
-    for (unsigned t = 1; t < threads && spawn_levels_ < 8u; t *= 2u) ++spawn_levels_;
-    if (spawn_levels_ > 0u) ++spawn_levels_;
+          BuildWorkers& workers, const LeafWriter& leaves, NodeRun& nodes)
+      : run_(&nodes), workers_(&workers), leaves_(&leaves), forks_(workers.size() > 1u) {
     bins_ = std::clamp(settings.bins, 2u, kMaxBins);
     max_leaf_size_ = std::max(settings.max_leaf_size, 1u);
     max_depth_ = std::clamp(settings.max_depth, 1u, static_cast<std::uint32_t>(SP_BVH_MAX_DEPTH));
@@ -215,20 +217,21 @@ class Builder {
     allocate_scratch();
     // A binary tree with n leaves has 2n - 1 nodes; reserving that bound
     // means no reallocation during the build.
-    nodes_->reserve(2u * std::size_t{count} - 1u);
+    run_->nodes.reserve(2u * std::size_t{count} - 1u);
   }
 
   void build() {
     Box bounds, centroids;
     const auto count = static_cast<std::uint32_t>(records_.size());
     measure(0, count, bounds, centroids);
-    nodes_->push_back(make_node(bounds));
+    run_->nodes.push_back(make_node(bounds));
     subdivide(0, 0, count, 1, centroids);
+    run_->finish();
   }
 
   std::uint32_t depth() const { return depth_; }
   // Whether a pass over `count` triangles is worth splitting across threads.
-  bool parallel(std::uint32_t count) const { return spawn_levels_ > 0u && count >= kParallelMin; }
+  bool parallel(std::uint32_t count) const { return forks_ && count >= kParallelMin; }
   // Whether a single pass over `count` triangles (the root's, the wide
   // copy's) is worth a second thread.
   bool concurrent_pass(std::uint32_t count) const { return parallel(count) && count >= kConcurrentPassMin; }
@@ -236,18 +239,18 @@ class Builder {
  private:
   // A builder for one subtree, run on another thread: it shares the
   // settings and the records and indices (it touches only its own range of
-  // them), and has its own scratch, depth and node array. `nodes` holds the
+  // them), and has its own scratch, depth and node run. `nodes` holds the
   // subtree's root at index 0, and its descendants follow in the order the
   // serial build would append them.
-  Builder(const Builder& parent, LargeArray<BvhNode>& nodes)
-      : nodes_(&nodes),
+  Builder(const Builder& parent, NodeRun& nodes)
+      : run_(&nodes),
         workers_(parent.workers_),
         leaves_(parent.leaves_),
         bins_(parent.bins_),
         max_leaf_size_(parent.max_leaf_size_),
         max_depth_(parent.max_depth_),
         traversal_cost_(parent.traversal_cost_),
-        spawn_levels_(parent.spawn_levels_),
+        forks_(parent.forks_),
         records_ptr_(parent.records_ptr_),
         indices_ptr_(parent.indices_ptr_) {
     allocate_scratch();
@@ -259,30 +262,23 @@ class Builder {
     right_count_.resize(bins_);
   }
 
-  // Builds the subtree of (*nodes_)[right] (already appended, with its
-  // bounds), offered to another thread, while this one builds the left
-  // sibling's, then splices it in: exactly the nodes, in exactly the order,
-  // the serial build appends after the left subtree.
+  // Builds the subtree of run_->nodes[right] (already appended, with its
+  // bounds) into a run of its own, offered to another thread, while this
+  // one builds the left sibling's, then inserts it where the serial build
+  // appends it: after the left subtree.
   void subdivide_pair_in_parallel(std::uint32_t left, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
                                   std::uint32_t level, const Box& left_centroids, const Box& right_centroids) {
     const std::uint32_t right = left + 1u;
-    LargeArray<BvhNode> sub;
-    sub.reserve(2u * std::size_t{end - middle} - 1u);
-    sub.push_back((*nodes_)[right]);
-    Builder worker(*this, sub);
+    auto sub = std::make_unique<NodeRun>();
+    sub->nodes.reserve(2u * std::size_t{end - middle} - 1u);
+    sub->nodes.push_back(run_->nodes[right]);
+    Builder worker(*this, *sub);
     workers_->run_both(
         [&worker, middle, end, level, &right_centroids] { worker.subdivide(0, middle, end, level, right_centroids); },
         [&] { subdivide(left, begin, middle, level, left_centroids); });
-
     depth_ = std::max(depth_, worker.depth_);
-    // Local index i > 0 becomes offset + i; leaves keep their triangle
-    // index, which is global already.
-    const auto offset = static_cast<std::uint32_t>(nodes_->size() - 1u);
-    for (BvhNode& n : sub) {
-      if (n.count == 0u) n.left_or_first += offset;
-    }
-    (*nodes_)[right] = sub[0];
-    nodes_->insert(nodes_->end(), sub.begin() + 1, sub.end());
+    sub->finish();
+    run_->insert_at_end(right, std::move(sub));
   }
   static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
 
@@ -324,7 +320,7 @@ class Builder {
     }
     if (count <= max_leaf_size_) {
       // Small enough for a leaf: split only where the SAH says it pays off.
-      const BvhNode& n = (*nodes_)[node];
+      const BvhNode& n = run_->nodes[node];
       const float parent_area = half_area(Box{to_vec4(n.bmin), to_vec4(n.bmax)});
       const bool split_pays =
           split.valid && parent_area > 0.0f && traversal_cost_ + split.cost / parent_area < static_cast<float>(count);
@@ -357,12 +353,12 @@ class Builder {
     const Box& left_centroids = sides.left_centroids;
     const Box& right_centroids = sides.right_centroids;
 
-    const auto children = static_cast<std::uint32_t>(nodes_->size());
-    (*nodes_)[node].left_or_first = children;
-    (*nodes_)[node].count = 0u;
-    nodes_->push_back(make_node(left));
-    nodes_->push_back(make_node(right));
-    if (level <= spawn_levels_ && count >= kParallelMin) {
+    const auto children = static_cast<std::uint32_t>(run_->nodes.size());
+    run_->nodes[node].left_or_first = children;
+    run_->nodes[node].count = 0u;
+    run_->nodes.push_back(make_node(left));
+    run_->nodes.push_back(make_node(right));
+    if (forks_ && end - middle >= kForkMin) {
       return subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, left_centroids, right_centroids);
     }
     subdivide(children, begin, middle, level + 1u, left_centroids);
@@ -370,8 +366,8 @@ class Builder {
   }
 
   void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
-    (*nodes_)[node].left_or_first = begin;
-    (*nodes_)[node].count = count;
+    run_->nodes[node].left_or_first = begin;
+    run_->nodes[node].count = count;
     leaves_->write(begin, count, indices_ptr_ + begin);
   }
 
@@ -547,7 +543,7 @@ class Builder {
     return i;
   }
 
-  LargeArray<BvhNode>* nodes_;  // the Bvh's, or a subtree's on a worker thread
+  NodeRun* run_;  // the whole tree's, or a subtree's on a worker thread
   BuildWorkers* workers_;
   const LeafWriter* leaves_;
   std::uint32_t depth_ = 0;
@@ -555,8 +551,8 @@ class Builder {
   std::uint32_t max_leaf_size_ = 4;
   std::uint32_t max_depth_ = SP_BVH_MAX_DEPTH;
   float traversal_cost_ = 1.0f;
-  std::uint32_t spawn_levels_ = 0;  // 0: single-threaded
-  LargeArray<Record> records_;      // owned by the top-level builder only
+  bool forks_ = false;          // whether subtrees go to other threads
+  LargeArray<Record> records_;  // owned by the top-level builder only
   LargeArray<std::uint32_t> indices_;
   Record* records_ptr_ = nullptr;  // records_ of the top-level builder
   std::uint32_t* indices_ptr_ = nullptr;
@@ -585,8 +581,10 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
   // (large_array.h).
   bvh.triangles.resize(count);
   const LeafWriter leaves{vertices, layers, solids, bvh.triangles.data()};
-  Builder builder(vertices, count, settings, workers, leaves, bvh);
+  NodeRun nodes;
+  Builder builder(vertices, count, settings, workers, leaves, nodes);
   builder.build();
+  bvh.nodes = assemble_node_runs(nodes, workers);
   bvh.depth = builder.depth();
   // The CPU backend's wide copies (wide_bvh.h, wide_collapse.cpp).
   bvh.wide = std::make_shared<const WideBvh>(build_wide_bvh(bvh, builder.concurrent_pass(count) ? &workers : nullptr));
