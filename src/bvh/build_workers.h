@@ -11,8 +11,15 @@
 // that another took runs other queued tasks meanwhile, so calls nest (a
 // subtree's build forks again) without idling or deadlock. Where a task runs
 // never changes what it computes.
+//
+// A thread with nothing to do spins for a while (kSpinBeforeSleep) before it
+// sleeps: a build hands out work every few hundred microseconds, and on the
+// benchmark VM a sleeping thread's virtual CPU halts, so that waking it took
+// 4-8 ms in about one build of three (bench/RESULTS.md section 24).
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -62,7 +69,7 @@ class BuildWorkers {
   struct Task {
     void (*run)(void* body);
     void* body;
-    bool done = false;                     // under mutex_
+    std::atomic<bool> done = false;        // set under mutex_, read by spinners without it
     std::exception_ptr failure = nullptr;  // set by the thread that ran it
   };
 
@@ -71,7 +78,14 @@ class BuildWorkers {
     (*static_cast<F*>(body))();
   }
 
+  // How long a thread without work polls for it before it sleeps.
+  static constexpr std::chrono::microseconds kSpinBeforeSleep{2000};
+
   void offer(Task& task);
+  // Polls, without the mutex, until `ready()` or kSpinBeforeSleep has
+  // passed; returns ready().
+  template <class Ready>
+  static bool spin_until(Ready ready);
   // Runs `task` here if it is still queued, else waits for it, running
   // other queued tasks meanwhile.
   void finish(Task& task);
@@ -82,7 +96,8 @@ class BuildWorkers {
   std::mutex mutex_;
   std::condition_variable changed_;  // a task was queued or finished, or stopping_
   std::deque<Task*> queue_;
-  bool stopping_ = false;
+  std::atomic<std::size_t> queued_ = 0;  // queue_.size(), for spinners
+  std::atomic<bool> stopping_ = false;
 };
 
 }  // namespace sp
