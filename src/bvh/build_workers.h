@@ -14,8 +14,8 @@
 //
 // A thread with nothing to do spins for a while (kSpinBeforeSleep) before it
 // sleeps: a build hands out work every few hundred microseconds, and on the
-// benchmark VM a sleeping thread's virtual CPU halts, so that waking it took
-// 4-8 ms in about one build of three (bench/RESULTS.md section 24).
+// benchmark VM waking a thread that had gone to sleep took 4-8 ms in about
+// one build of three (bench/RESULTS.md section 24).
 #pragma once
 
 #include <atomic>

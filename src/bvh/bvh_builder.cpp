@@ -50,15 +50,15 @@ constexpr std::uint32_t kSmallNode = 8;
 // Builds of fewer triangles run on the calling thread alone: starting a
 // thread costs more than it saves.
 constexpr std::uint32_t kParallelMin = 16384;
-// A node this large or larger hands its right subtree to the other threads
+// A right subtree this large or larger is offered to the other threads
 // (Builder::subdivide_pair_in_parallel), at any depth: splits are uneven,
 // and a thread that runs out of work needs pieces left to take. Smaller
 // pieces cost more in scratch and hand-over than they save in waiting.
-// On the benchmark VM at 252k triangles, 8192 took 23.2 ms on 2 threads,
+// On the benchmark VM at 252k triangles, 8192 took 23.1 ms on 2 threads,
 // 16384 23.9, 65536 24.9 and 4096 25.4 (bench/RESULTS.md section 24).
 constexpr std::uint32_t kForkMin = 8192;
-// The root's passes (binning, partition, child bounds) and the wide copy's
-// subtrees go to a second thread only from this many triangles on: on the
+// The root's passes (binning, partition) and the wide copies' tasks go to
+// a second thread only from this many triangles on: on the
 // benchmark VM, doing so at 30k triangles made the build 3x slower (4.7 ->
 // 15 ms; bench/RESULTS.md section 12), while at 252k and 1M it pays.
 constexpr std::uint32_t kConcurrentPassMin = 131072;
