@@ -401,16 +401,12 @@ TEST(Bvh, DegenerateTrianglesAreNeverHit) {
   EXPECT_EQ(hits, 0u);
 }
 
-// The build splits subtrees near the root across threads; the output must be
+// The build hands subtrees to other threads, each into a node run of its
+// own, and places the runs at the end; from 128k triangles the root's passes
+// and the wide copies run on two threads too. The output must be
 // byte-identical to the single-threaded build (the CPU and GPU backends'
 // results are compared exactly), and the same from one build to the next.
-TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
-  Soup soup = make_rooms(6, 6, 6, 6);  // 233,280 triangles
-  const Soup random = make_random_soup(20000, 11);
-  soup.vertices.insert(soup.vertices.end(), random.vertices.begin(), random.vertices.end());
-  soup.layers.insert(soup.layers.end(), random.layers.begin(), random.layers.end());
-  ASSERT_GE(soup.layers.size(), 100000u);
-
+void expect_same_tree_for_every_thread_count(const Soup& soup) {
   auto build = [&](unsigned threads) {
     sp::BvhBuildSettings settings;
     settings.threads = threads;
@@ -426,7 +422,7 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
     EXPECT_EQ(0, std::memcmp(other.nodes.data(), serial.nodes.data(), serial.nodes.size() * sizeof(sp::BvhNode)));
     EXPECT_EQ(0, std::memcmp(other.triangles.data(), serial.triangles.data(),
                              serial.triangles.size() * sizeof(sp::BvhTriangle)));
-    // The 4-wide copy, whose root subtrees are collapsed on threads of their own.
+    // The wide copies, whose packets and trees are built as tasks of their own.
     ASSERT_TRUE(other.wide && serial.wide);
     EXPECT_EQ(other.wide->depth, serial.wide->depth);
     ASSERT_EQ(other.wide->nodes.size(), serial.wide->nodes.size());
@@ -444,6 +440,29 @@ TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
     }
   }
   check_invariants(serial, soup, {});
+}
+
+Soup rooms_and_random(int nx, int ny, int nz, std::uint32_t random_triangles) {
+  Soup soup = make_rooms(nx, ny, nz, 6);  // 1,080 triangles per room
+  const Soup random = make_random_soup(random_triangles, 11);
+  soup.vertices.insert(soup.vertices.end(), random.vertices.begin(), random.vertices.end());
+  soup.layers.insert(soup.layers.end(), random.layers.begin(), random.layers.end());
+  return soup;
+}
+
+TEST(Bvh, ParallelBuildIsByteIdenticalToSerial) {
+  const Soup soup = rooms_and_random(6, 6, 6, 20000);  // 253,280 triangles
+  ASSERT_GE(soup.layers.size(), 131072u);              // the root's passes on two threads
+  expect_same_tree_for_every_thread_count(soup);
+}
+
+// From 16k to 128k triangles subtrees still go to other threads while the
+// root's passes and the wide copies stay on one.
+TEST(Bvh, MidSizeParallelBuildIsByteIdenticalToSerial) {
+  const Soup soup = rooms_and_random(4, 4, 3, 5000);  // 56,840 triangles
+  ASSERT_GE(soup.layers.size(), 16384u);
+  ASSERT_LT(soup.layers.size(), 131072u);
+  expect_same_tree_for_every_thread_count(soup);
 }
 
 // A root of 131,072 triangles or more is binned and partitioned as two

@@ -486,6 +486,15 @@ TEST(BvhRefit, BadInputIsRejectedAndLeavesTheTreeAlone) {
   hand.triangles = {sp::BvhTriangle{vec3(0), 0, vec3(1, 0, 0), 0, vec3(0, 1, 0), 0, vec3(0, 0, 1), 0}};
   expect_rejected(hand, {vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)}, "node 2's children are not after it");
 
+  // Children after their parents, but shared by two nodes, or a node no
+  // parent leads to: the wide copies' one-pass layout would miscount both.
+  hand.nodes = {node(vec3(0), vec3(1), 1, 0), node(vec3(0), vec3(1), 3, 0), node(vec3(0), vec3(1), 3, 0),
+                node(vec3(0), vec3(1), 0, 1), node(vec3(0), vec3(1), 0, 1)};
+  expect_rejected(hand, {vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)}, "node 3 is the child of two nodes");
+  hand.nodes = {node(vec3(0), vec3(1), 1, 0), node(vec3(0), vec3(1), 0, 1), node(vec3(0), vec3(1), 0, 1),
+                node(vec3(0), vec3(1), 0, 1)};
+  expect_rejected(hand, {vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)}, "node 3 is no node's child");
+
   sp::Bvh empty;
   sp::BvhChanges changes = sp::refit_bvh(empty, {}).value();
   EXPECT_TRUE(changes.nodes.empty() && changes.triangles.empty());

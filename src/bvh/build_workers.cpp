@@ -110,10 +110,12 @@ void BuildWorkers::finish(Task& task) {
       continue;
     }
     lock.unlock();
-    spin_until(
+    const bool seen = spin_until(
         [&] { return task.done.load(std::memory_order_acquire) || queued_.load(std::memory_order_acquire) > 0u; });
     lock.lock();
-    if (task.done || !queue_.empty()) continue;
+    // Work seen but taken by another thread meanwhile: spin again, since
+    // work is still being handed out; sleep only after a whole quiet spin.
+    if (task.done || !queue_.empty() || seen) continue;
     changed_.wait(lock);
   }
 }
@@ -123,9 +125,12 @@ void BuildWorkers::thread_loop() {
   for (;;) {
     if (!stopping_ && queue_.empty()) {
       lock.unlock();
-      spin_until(
+      const bool seen = spin_until(
           [this] { return stopping_.load(std::memory_order_acquire) || queued_.load(std::memory_order_acquire) > 0u; });
       lock.lock();
+      // As in finish(): a task another thread took first is no reason to
+      // sleep.
+      if (seen && !stopping_ && queue_.empty()) continue;
     }
     changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
     if (stopping_) return;

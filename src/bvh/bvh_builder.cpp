@@ -492,8 +492,9 @@ class Builder {
   // adds each side's bounds to `sides`. With `halve`, the two halves of the
   // range are partitioned apart (on two threads when `concurrent`), then the
   // first half's right part and the second half's left part trade places,
-  // which a whole-range partition does not need: the caller halves only
-  // where it may run concurrently.
+  // which a whole-range partition does not need. The caller halves the root
+  // only, by its size, on one thread or two alike, so that the tree is the
+  // same for every thread count.
   std::uint32_t partition(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split,
                           bool halve, bool concurrent, Sides& sides) {
     if (!halve) return partition_range(begin, end, binning, split, sides);
@@ -522,7 +523,7 @@ class Builder {
 
   // Hoare's partition, which moves only the records on the wrong side, each
   // once, and measures each side's bounds on the way (the children's boxes
-  // and their binnings need them), so no record is read twice.
+  // and their binnings need them), so that no second pass reads them.
   std::uint32_t partition_range(std::uint32_t begin, std::uint32_t end, const Binning& binning, const Split& split,
                                 Sides& sides) {
     Sides s = sides;  // in locals: boxes behind a reference stay in memory

@@ -16,6 +16,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -64,10 +65,13 @@ void check_vertices(const Bvh& bvh, std::span<const glm::vec3> vertices) {
 }
 
 // The refit reads vertices through scene_index and computes every node from
-// nodes after it in one reverse pass; build_bvh guarantees both (it appends a
-// node's children after the node), but a tree made by hand may not.
+// nodes after it in one reverse pass, and the wide copies it rebuilds
+// (wide_collapse.cpp) scan the nodes assuming each but the root is the child
+// of exactly one; build_bvh guarantees all of it (it appends a node's
+// children after the node), but a tree made by hand may not.
 void check_shape(const Bvh& bvh) {
   const std::size_t node_count = bvh.nodes.size();
+  std::vector<std::uint8_t> parents(node_count, 0u);
   for (std::size_t i = 0; i < node_count; ++i) {
     const BvhNode& n = bvh.nodes[i];
     if (n.count > 0u) {
@@ -75,7 +79,16 @@ void check_shape(const Bvh& bvh) {
         fail("leaf " + std::to_string(i) + " holds triangles past the end");
     } else if (n.left_or_first <= i || std::size_t{n.left_or_first} + 1u >= node_count) {
       fail("node " + std::to_string(i) + "'s children are not after it in the node array (not a build_bvh tree)");
+    } else {
+      for (std::uint32_t k = 0; k < 2u; ++k) {
+        const std::uint32_t child = n.left_or_first + k;
+        if (++parents[child] > 1u)
+          fail("node " + std::to_string(child) + " is the child of two nodes (not a build_bvh tree)");
+      }
     }
+  }
+  for (std::size_t i = 1; i < node_count; ++i) {
+    if (parents[i] == 0u) fail("node " + std::to_string(i) + " is no node's child (not a build_bvh tree)");
   }
   for (std::size_t i = 0; i < bvh.triangles.size(); ++i) {
     if (bvh.triangles[i].scene_index >= bvh.triangle_count())

@@ -65,6 +65,8 @@ struct CopyJob {
   std::uint32_t first, last;
 };
 
+// A run's placeholders (each insert's `right`) are copied too, with a child
+// index that means nothing; assemble_node_runs overwrites them afterwards.
 void copy_jobs(const CopyJob* jobs, std::size_t count, BvhNode* out, BuildWorkers& workers) {
   if (count == 0u) return;
   if (count == 1u) {

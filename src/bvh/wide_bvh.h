@@ -141,10 +141,11 @@ class BuildWorkers;
 // Collapses `bvh` (wide_collapse.cpp); given `workers`, the packets, the
 // 4-wide tree's subtrees and the 8-wide tree are offered to its threads (the
 // result is the same either way). Packets follow their leaves' order in
-// bvh.nodes. Precondition: bvh.nodes is
-// not empty, and every interior node's box is exactly the union of its
-// children's, as build_bvh makes it (the traversal derives a parent's entry
-// distance from its children's).
+// bvh.nodes. Preconditions, as build_bvh makes the tree: bvh.nodes is not
+// empty; every node but the root is the child of exactly one node, which
+// comes before it (the layout is one forward scan); and every interior
+// node's box is exactly the union of its children's (the traversal derives
+// a parent's entry distance from its children's).
 WideBvh build_wide_bvh(const Bvh& bvh, BuildWorkers* workers = nullptr);
 
 // sp_closest_hit's answer for `bvh`, from `wide` = build_wide_bvh(bvh).
