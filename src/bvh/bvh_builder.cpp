@@ -55,7 +55,7 @@ constexpr std::uint32_t kParallelMin = 16384;
 // and a thread that runs out of work needs pieces left to take. Smaller
 // pieces cost more in scratch and hand-over than they save in waiting.
 // On the benchmark VM at 252k triangles, 8192 took 23.1 ms on 2 threads,
-// 16384 23.9, 65536 24.9 and 4096 25.4 (bench/RESULTS.md section 24).
+// 16384 24.1, 65536 24.9 and 4096 25.4 (bench/RESULTS.md section 24).
 constexpr std::uint32_t kForkMin = 8192;
 // The root's passes (binning, partition) and the wide copies' tasks go to
 // a second thread only from this many triangles on: on the
