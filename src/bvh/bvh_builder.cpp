@@ -149,23 +149,29 @@ struct Split {
   float cost = 0.0f;           // A_L * N_L + A_R * N_R, not yet divided by A_parent
 };
 
-// The bounds and centroid bounds of a split node's two sides.
-struct Sides {
-  Box left, left_centroids, right, right_centroids;
+// The bounds of some triangles' records and of their doubled centroids:
+// a node's box, and what its binning spans.
+struct Extent {
+  Box bounds;
+  Box centroids;
 
-  void add_left(const Record& r) {
-    left.grow(r.lo, r.hi);
-    left_centroids.grow(r.lo + r.hi);
+  void add(const Record& r) {
+    bounds.grow(r.lo, r.hi);
+    centroids.grow(r.lo + r.hi);
   }
-  void add_right(const Record& r) {
-    right.grow(r.lo, r.hi);
-    right_centroids.grow(r.lo + r.hi);
+  void add(const Extent& other) {
+    bounds.grow(other.bounds);
+    centroids.grow(other.centroids);
   }
+};
+
+// The extents of a split node's two sides.
+struct Sides {
+  Extent left, right;
+
   void add(const Sides& other) {
-    left.grow(other.left);
-    left_centroids.grow(other.left_centroids);
-    right.grow(other.right);
-    right_centroids.grow(other.right_centroids);
+    left.add(other.left);
+    right.add(other.right);
   }
 };
 
@@ -221,11 +227,10 @@ class Builder {
   }
 
   void build() {
-    Box bounds, centroids;
     const auto count = static_cast<std::uint32_t>(records_.size());
-    measure(0, count, bounds, centroids);
-    run_->nodes.push_back(make_node(bounds));
-    subdivide(0, 0, count, 1, centroids);
+    const Extent all = measure(0, count);
+    run_->nodes.push_back(make_node(all.bounds));
+    subdivide(0, 0, count, 1, all.centroids);
     run_->finish();
   }
 
@@ -282,18 +287,12 @@ class Builder {
   }
   static BvhNode make_node(const Box& box) { return BvhNode{to_vec3(box.lo), 0u, to_vec3(box.hi), 0u}; }
 
-  // Bounds of [begin, end) and of its doubled centroids.
-  // Accumulated in locals: the compiler cannot keep boxes behind references
-  // in registers.
-  void measure(std::uint32_t begin, std::uint32_t end, Box& bounds, Box& centroids) const {
-    Box b = bounds, c = centroids;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Record& r = records_ptr_[i];
-      b.grow(r.lo, r.hi);
-      c.grow(r.lo + r.hi);
-    }
-    bounds = b;
-    centroids = c;
+  // The extent of records [begin, end), accumulated in a local: the
+  // compiler cannot keep boxes behind references in registers.
+  Extent measure(std::uint32_t begin, std::uint32_t end) const {
+    Extent extent;
+    for (std::uint32_t i = begin; i < end; ++i) extent.add(records_ptr_[i]);
+    return extent;
   }
 
   void subdivide(std::uint32_t node, std::uint32_t begin, std::uint32_t end, std::uint32_t level,
@@ -345,24 +344,21 @@ class Builder {
         middle = begin + count / 2u;
       }
       run_both(
-          *workers_, concurrent, [&] { measure(middle, end, sides.right, sides.right_centroids); },
-          [&] { measure(begin, middle, sides.left, sides.left_centroids); });
+          *workers_, concurrent, [&] { sides.right = measure(middle, end); },
+          [&] { sides.left = measure(begin, middle); });
     }
-    const Box& left = sides.left;
-    const Box& right = sides.right;
-    const Box& left_centroids = sides.left_centroids;
-    const Box& right_centroids = sides.right_centroids;
 
     const auto children = static_cast<std::uint32_t>(run_->nodes.size());
     run_->nodes[node].left_or_first = children;
     run_->nodes[node].count = 0u;
-    run_->nodes.push_back(make_node(left));
-    run_->nodes.push_back(make_node(right));
+    run_->nodes.push_back(make_node(sides.left.bounds));
+    run_->nodes.push_back(make_node(sides.right.bounds));
     if (forks_ && end - middle >= kForkMin) {
-      return subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, left_centroids, right_centroids);
+      return subdivide_pair_in_parallel(children, begin, middle, end, level + 1u, sides.left.centroids,
+                                        sides.right.centroids);
     }
-    subdivide(children, begin, middle, level + 1u, left_centroids);
-    subdivide(children + 1u, middle, end, level + 1u, right_centroids);
+    subdivide(children, begin, middle, level + 1u, sides.left.centroids);
+    subdivide(children + 1u, middle, end, level + 1u, sides.right.centroids);
   }
 
   void make_leaf(std::uint32_t node, std::uint32_t begin, std::uint32_t count) {
@@ -530,15 +526,15 @@ class Builder {
     auto is_left = [&](const Record& r) { return binning.bin(r.lo + r.hi)[split.axis] <= split.last_left; };
     std::uint32_t i = begin, j = end;  // [begin, i) left, [j, end) right
     for (;;) {
-      while (i < j && is_left(records_ptr_[i])) s.add_left(records_ptr_[i++]);
-      while (i < j && !is_left(records_ptr_[j - 1u])) s.add_right(records_ptr_[--j]);
+      while (i < j && is_left(records_ptr_[i])) s.left.add(records_ptr_[i++]);
+      while (i < j && !is_left(records_ptr_[j - 1u])) s.right.add(records_ptr_[--j]);
       if (i >= j) break;
       // records i (right) and j - 1 (left) trade places.
       --j;
       std::swap(records_ptr_[i], records_ptr_[j]);
       std::swap(indices_ptr_[i], indices_ptr_[j]);
-      s.add_left(records_ptr_[i++]);
-      s.add_right(records_ptr_[j]);
+      s.left.add(records_ptr_[i++]);
+      s.right.add(records_ptr_[j]);
     }
     sides = s;
     return i;

@@ -76,7 +76,7 @@ class Collapser8 {
     for (std::uint32_t s = 0; s < kWide8Arity; ++s)
       if (slots[s] != SP_INVALID) fill_slot(index, s, slots[s]);
     for (std::uint32_t s = 0; s < kWide8Arity; ++s) {
-      if (slots[s] != SP_INVALID && bvh_.nodes[slots[s]].count == 0u) {
+      if (is_interior_slot(bvh_, slots[s])) {
         const std::uint32_t child = collapse(slots[s], level + 1u);
         wide_.nodes8[index].slot[s].child = child;
       }

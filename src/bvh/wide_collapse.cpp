@@ -21,11 +21,9 @@
 namespace sp {
 namespace {
 
+using wide_walk::is_interior_slot;
 using wide_walk::packets_of_leaf;
 using wide_walk::wide_slots;
-
-// Whether slot entry `slot` (from wide_slots) leads to another wide node.
-bool is_interior_slot(const Bvh& bvh, std::uint32_t slot) { return slot != SP_INVALID && bvh.nodes[slot].count == 0u; }
 
 // What the collapses will write, from one scan of the binary nodes.
 struct CollapseLayout {

@@ -35,6 +35,12 @@ inline void wide_slots(const Bvh& bvh, std::uint32_t binary, std::uint32_t (&slo
   }
 }
 
+// Whether slot entry `slot` (from wide_slots) leads to another wide node:
+// it is used and a binary interior node.
+inline bool is_interior_slot(const Bvh& bvh, std::uint32_t slot) {
+  return slot != SP_INVALID && bvh.nodes[slot].count == 0u;
+}
+
 // The packets (TrianglePacket) a binary leaf's triangles fill.
 inline std::uint32_t packets_of_leaf(const BvhNode& leaf) { return (leaf.count + kWideArity - 1u) / kWideArity; }
 
