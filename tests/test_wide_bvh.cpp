@@ -416,6 +416,26 @@ TEST(WideBvh, LargeTreesMatchBinary) {
   EXPECT_GT(a.hits, 3000u);
 }
 
+// Trees past kWide8MaxTreeBytes get no 8-wide copy; there the 8-wide walk,
+// when selected, hands the query to the 4-wide AVX-512 walk. A smaller tree
+// with its 8-wide copy taken away stands in for one (a real one takes some
+// 800k triangles).
+TEST(WideBvh, TreesWithoutAnEightWideCopyTakeTheFourWideWalk) {
+  if (!sp::wide_walk_available(sp::WideWalk::Avx512Wide8)) GTEST_SKIP() << "this CPU or build has no 8-wide walk";
+  Soup soup = make_random_soup(3000, 41);
+  sp::Bvh bvh = soup.build();
+  auto without_wide8 = std::make_shared<sp::WideBvh>(*bvh.wide);
+  ASSERT_FALSE(without_wide8->nodes8.empty());
+  decltype(without_wide8->nodes8)().swap(without_wide8->nodes8);  // freed: nothing left to walk
+  without_wide8->depth8 = 0;
+  bvh.wide = without_wide8;
+  const WalkSelection selection(sp::WideWalk::Avx512Wide8);
+  ASSERT_TRUE(selection.selected());
+  const Agreement a =
+      expect_selected_walk_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-6), vec3(6), 2000, 42), 43));
+  EXPECT_GT(a.hits, 500u);
+}
+
 // Axis-aligned walls (node bounds planes coincide with faces), coincident
 // walls (exact ties between scene indices), T-junctions, rays that start on
 // surfaces or run inside a wall's plane with zero direction components.

@@ -250,6 +250,14 @@ std::atomic<WideWalk>& selected() {
   return walk;
 }
 
+// The walk a query on `wide` takes: the selected one, but the 4-wide
+// AVX-512 walk where the 8-wide one is selected and the tree has no 8-wide
+// copy (past kWide8MaxTreeBytes).
+[[maybe_unused]] WideWalk walk_on(const WideBvh& wide) {
+  const WideWalk walk = selected().load(std::memory_order_relaxed);
+  return walk == WideWalk::Avx512Wide8 && wide.nodes8.empty() ? WideWalk::Avx512 : walk;
+}
+
 }  // namespace
 
 bool wide_walk_available(WideWalk walk) { return cpu_runs(walk); }
@@ -276,10 +284,9 @@ const char* wide_walk_name(WideWalk walk) {
 
 HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
 #if defined(SP_WIDE_AVX512)
-  switch (selected_wide_walk()) {
+  switch (walk_on(wide)) {
     case WideWalk::Avx512Wide8:
-      if (!wide.nodes8.empty()) return wide8::closest_hit(wide, bvh, origin, dir, tmin, tmax);
-      [[fallthrough]];
+      return wide8::closest_hit(wide, bvh, origin, dir, tmin, tmax);
     case WideWalk::Avx512:
       return closest_hit_avx512(wide, bvh, origin, dir, tmin, tmax);
     case WideWalk::Baseline:
@@ -292,10 +299,9 @@ HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, 
 shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                                   float tmax) {
 #if defined(SP_WIDE_AVX512)
-  switch (selected_wide_walk()) {
+  switch (walk_on(wide)) {
     case WideWalk::Avx512Wide8:
-      if (!wide.nodes8.empty()) return wide8::nearest_hits(wide, bvh, origin, dir, tmin, tmax);
-      [[fallthrough]];
+      return wide8::nearest_hits(wide, bvh, origin, dir, tmin, tmax);
     case WideWalk::Avx512:
       return nearest_hits_avx512(wide, bvh, origin, dir, tmin, tmax);
     case WideWalk::Baseline:
