@@ -3,15 +3,19 @@
 // refusal is checked twice: by the load's result, and by an inotify watch
 // on a canary file outside the folder that must never be opened. The
 // canary is a valid buffer, so a URI that slipped through would load.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "core/beneath_open.h"
 #include "soundpaint/scene.h"
 #include "support/canary_watch.h"
 #include "support/gltf_builder.h"
@@ -93,9 +97,16 @@ TEST_F(Confinement, ReadsBuffersInsideTheSceneFolderTree) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->triangle_count(), 1u);
   }
-  // A symbolic link that stays inside the folder is followed.
+  // A symbolic link that stays inside the folder is followed, to a file or
+  // to a folder, and ".." in its target may climb back inside.
   fs::create_symlink("sub/inside.bin", level() / "alias.bin");
-  EXPECT_TRUE(load(scene_with_uri("alias.bin")).ok());
+  fs::create_directory_symlink("sub", level() / "same");
+  fs::create_symlink("../sub/inside.bin", level() / "sub" / "back.bin");
+  for (const std::string uri : {"alias.bin", "same/inside.bin", "sub/back.bin", "same/back.bin"}) {
+    SCOPED_TRACE(uri);
+    const sp::Result<sp::Scene> scene = load(scene_with_uri(uri));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+  }
   EXPECT_EQ(watch_->take_events(), 0);
 }
 
@@ -148,6 +159,16 @@ TEST_F(Confinement, RefusesSymbolicLinksLeadingOut) {
   expect_refused(scene_with_uri("link.bin"), "link.bin", "through a symbolic link");
   fs::create_directory_symlink(outside(), level() / "sub" / "door");
   expect_refused(scene_with_uri("sub/door/canary.bin"), "sub/door/canary.bin", "through a symbolic link");
+}
+
+// Only relative links are followed: a link's absolute target is refused
+// even when it names a file inside (the folder cannot be checked from an
+// absolute path without looking it up a second time).
+TEST_F(Confinement, RefusesAbsoluteLinkTargetsAndLinkLoops) {
+  fs::create_symlink(level() / "sub" / "inside.bin", level() / "absolute.bin");
+  expect_refused(scene_with_uri("absolute.bin"), "absolute.bin", "through a symbolic link");
+  fs::create_symlink("loop.bin", level() / "loop.bin");
+  expect_refused(scene_with_uri("loop.bin"), "loop.bin", "cannot open: Too many levels of symbolic links");
 }
 
 TEST_F(Confinement, RefusesWhatIsNotARegularFile) {
@@ -214,5 +235,108 @@ TEST_F(Confinement, RefusesDevicesAndFifosAsTheSceneItself) {
   ASSERT_FALSE(fifo.ok());
   EXPECT_NE(fifo.error().message.find("not a regular file"), std::string::npos);
 }
+
+// sp::open_beneath's two ways, each on a fixed tree (no race; the race is
+// tests/test_scene_load_race.cpp):
+//   root/sub/f.bin                 "inside"
+//   root/alias -> sub/f.bin        a link inside, staying inside
+//   root/sub/up -> ../sub/f.bin    ".." in a link, staying inside
+//   root/folder -> sub             a link to a folder inside
+//   root/out -> ../outside/f.bin   a link leading out
+//   root/door -> ../outside        a link to a folder outside
+//   root/absolute -> <root>/sub/f.bin, an absolute target, though inside
+//   root/loop -> loop; root/ping -> pong -> ping
+//   outside/f.bin                  "outside"
+using OpenBeneathWay = sp::OpenResult (*)(int, std::string_view, int);
+
+class OpenBeneath : public sp::test::TestDirectory, public ::testing::WithParamInterface<OpenBeneathWay> {
+ protected:
+  void SetUp() override {
+    TestDirectory::SetUp();
+    fs::create_directories(root() / "sub");
+    fs::create_directories(root() / "a");
+    fs::create_directories(dir_ / "outside");
+    write(root() / "sub" / "f.bin", std::string("inside"));
+    write(dir_ / "outside" / "f.bin", std::string("outside"));
+    fs::create_symlink("sub/f.bin", root() / "alias");
+    fs::create_symlink("../sub/f.bin", root() / "sub" / "up");
+    fs::create_directory_symlink("sub", root() / "folder");
+    fs::create_symlink("../outside/f.bin", root() / "out");
+    fs::create_directory_symlink("../outside", root() / "door");
+    fs::create_symlink(root() / "sub" / "f.bin", root() / "absolute");
+    fs::create_symlink("loop", root() / "loop");
+    fs::create_symlink("pong", root() / "ping");
+    fs::create_symlink("ping", root() / "pong");
+    root_ = sp::FileDescriptor(::open(root().c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC));
+    ASSERT_TRUE(root_.valid());
+    if (open("sub/f.bin").error == ENOSYS) GTEST_SKIP() << "no openat2 in this kernel or build";
+  }
+
+  fs::path root() const { return dir_ / "root"; }
+  sp::OpenResult open(const std::string& path, int flags = O_RDONLY) const {
+    return GetParam()(root_.get(), path, flags);
+  }
+  // The file's text, or the error's name.
+  std::string read(const std::string& path) const {
+    const sp::OpenResult opened = open(path);
+    if (!opened.fd.valid()) return strerrorname_np(opened.error);
+    char text[16] = {};
+    return ::read(opened.fd.get(), text, sizeof text - 1) >= 0 ? text : "read error";
+  }
+
+  sp::FileDescriptor root_;
+};
+
+TEST_P(OpenBeneath, FollowsLinksThatStayInside) {
+  for (const char* path : {"sub/f.bin", "alias", "sub/up", "folder/f.bin", "folder/up", "folder/../alias",
+                           "sub/../sub/./f.bin", "a/../sub//f.bin"}) {
+    EXPECT_EQ(read(path), "inside") << path;
+  }
+  // Folders too, as O_PATH descriptors.
+  for (const char* path : {"folder", "sub/", "folder/..", "."}) {
+    const sp::OpenResult opened = open(path, O_PATH | O_DIRECTORY);
+    EXPECT_TRUE(opened.fd.valid()) << path << ": " << std::strerror(opened.error);
+  }
+}
+
+TEST_P(OpenBeneath, RefusesEveryWayOut) {
+  for (const std::string& path : {std::string("out"), std::string("door/f.bin"), std::string("a/../../outside/f.bin"),
+                                  std::string("../outside/f.bin"), std::string("folder/../../outside/f.bin"),
+                                  std::string("absolute"), (dir_ / "outside" / "f.bin").string(), std::string("..")}) {
+    EXPECT_EQ(read(path), "EXDEV") << path;
+  }
+}
+
+TEST_P(OpenBeneath, LinkLoopsFailCleanly) {
+  EXPECT_EQ(read("loop"), "ELOOP");
+  EXPECT_EQ(read("ping"), "ELOOP");
+  EXPECT_EQ(read("ping/f.bin"), "ELOOP");
+}
+
+// Linux's own limit: 40 links in one resolution, the 41st is a loop.
+TEST_P(OpenBeneath, FollowsAsManyLinksAsLinuxDoes) {
+  fs::create_symlink("sub/f.bin", root() / "chain0");
+  for (int i = 1; i <= sp::kMaxSymbolicLinks; ++i) {
+    fs::create_symlink("chain" + std::to_string(i - 1), root() / ("chain" + std::to_string(i)));
+  }
+  EXPECT_EQ(read("chain" + std::to_string(sp::kMaxSymbolicLinks - 1)), "inside");
+  EXPECT_EQ(read("chain" + std::to_string(sp::kMaxSymbolicLinks)), "ELOOP");
+}
+
+TEST_P(OpenBeneath, ReportsMissingFilesAsOpenatDoes) {
+  EXPECT_EQ(read("missing"), "ENOENT");
+  EXPECT_EQ(read(""), "ENOENT");
+  EXPECT_EQ(read("sub/f.bin/x"), "ENOTDIR");
+  EXPECT_EQ(read("sub/f.bin/"), "ENOTDIR");
+  EXPECT_EQ(read("alias/"), "ENOTDIR");
+}
+
+INSTANTIATE_TEST_SUITE_P(Ways, OpenBeneath,
+                         ::testing::Values(&sp::open_beneath_by_walk, &sp::open_beneath_by_openat2, &sp::open_beneath),
+                         [](const ::testing::TestParamInfo<OpenBeneathWay>& way) {
+                           if (way.param == &sp::open_beneath_by_walk) return std::string("Walk");
+                           if (way.param == &sp::open_beneath_by_openat2) return std::string("Openat2");
+                           return std::string("Either");
+                         });
 
 }  // namespace

@@ -1,8 +1,11 @@
 #include "scene/gltf_document.h"
 
+#include <fcntl.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -66,10 +69,27 @@ std::string lower_extension(const std::filesystem::path& path) {
   return ext;
 }
 
+// The scene file, opened from its folder's descriptor: the folder its
+// buffers are read from is the folder it was read from, even if a folder on
+// its path is swapped meanwhile. The file itself may be a link (the caller
+// chose the path).
+std::vector<unsigned char> read_scene_file(int folder, const std::filesystem::path& path) {
+  // A path that ends in '/' names a folder: "is a directory".
+  const std::filesystem::path name = path.filename().empty() ? "." : path.filename();
+  const FileOpener open = [folder, &name](int flags) {
+    FileDescriptor fd(::openat(folder, name.c_str(), flags | O_CLOEXEC));
+    if (!fd.valid() && (errno == ENOENT || errno == ENOTDIR)) fail("file not found");
+    if (!fd.valid()) fail(std::string("cannot open: ") + std::strerror(errno));
+    return fd;
+  };
+  return read_regular_file(open, kMaxGltfFileBytes, ErrorCode::InvalidScene);
+}
+
 }  // namespace
 
 tinygltf::Model read_gltf(const std::filesystem::path& path, const SceneLoadOptions& options) {
-  const std::vector<unsigned char> bytes = read_regular_file(path, kMaxGltfFileBytes, ErrorCode::InvalidScene);
+  const FileDescriptor folder = open_scene_folder(path);
+  const std::vector<unsigned char> bytes = read_scene_file(folder.get(), path);
   if (bytes.empty()) fail("empty file");
   const bool binary = has_glb_magic(bytes);
   if (!binary && lower_extension(path) == ".glb") fail("not a binary glTF file (no \"glTF\" magic)");
@@ -89,8 +109,7 @@ tinygltf::Model read_gltf(const std::filesystem::path& path, const SceneLoadOpti
   } catch (const Exception& e) {
     fail(kind + e.error().message);
   }
-  GltfFileAccess files(UriRules{scene_folder_of(path), options.allow_external_uris}, facts.buffer_uris,
-                       kMaxGltfFileBytes);
+  GltfFileAccess files(UriRules{folder.get(), options.allow_external_uris}, facts.buffer_uris, kMaxGltfFileBytes);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);

@@ -11,7 +11,8 @@ namespace sp::scene_detail {
 
 // Reads `path` as binary glTF when it starts with the "glTF" magic, else as
 // JSON glTF (a file named .glb without the magic is an error). Only regular
-// files are read. JSON nested deeper than json_fields::kMaxJsonDepth is
+// files are read. The scene's folder is opened once, and the scene file and
+// its buffers are all opened from that descriptor. JSON nested deeper than json_fields::kMaxJsonDepth is
 // refused before tinygltf parses it. External buffers are read only as
 // uri_confinement.h allows (options.allow_external_uris lifts the folder
 // rule); images are never read nor decoded, so missing or unsupported

@@ -1,6 +1,5 @@
 #include "scene/gltf_file_access.h"
 
-#include "core/regular_file.h"
 #include "scene/scene_error.h"
 
 namespace sp::scene_detail {
@@ -63,7 +62,7 @@ bool GltfFileAccess::read(std::vector<unsigned char>& out, std::string& error, c
   }
   found->second.reads_left -= 1;
   try {
-    out = read_regular_file(resolve_scene_uri(rules_, decoded_uri), max_file_bytes_, ErrorCode::InvalidScene);
+    out = read_scene_uri(rules_, decoded_uri, max_file_bytes_);
     return true;
   } catch (const Exception& e) {
     if (refusal_.empty()) refusal_ = "buffer URI \"" + shown(found->second.as_written) + "\": " + e.error().message;

@@ -2,7 +2,7 @@
 //
 // tinygltf's own callbacks open whatever a URI names, and look for it in the
 // current directory too. These serve exactly the external buffers the
-// document declares, each once, from files resolve_scene_uri() allows;
+// document declares, each once, from files read_scene_uri() allows;
 // images are never read (soundpaint needs geometry only), and nothing is
 // ever written.
 #pragma once
@@ -22,6 +22,7 @@ class GltfFileAccess {
  public:
   // `buffer_uris`: the URIs of the document's buffers as written
   // (GltfJsonFacts); `max_file_bytes`: the largest buffer file read.
+  // rules.scene_folder must stay open while this object is used.
   GltfFileAccess(UriRules rules, const std::vector<std::string>& buffer_uris, std::uint64_t max_file_bytes);
   GltfFileAccess(const GltfFileAccess&) = delete;
   GltfFileAccess& operator=(const GltfFileAccess&) = delete;
