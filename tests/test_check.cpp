@@ -1,15 +1,23 @@
 // sp::check_scene (`soundpaint check`) on scenes built to have exactly one
 // problem each, with counts derived by hand, and on a closed room that must
-// have none.
+// have none; names from the level escaped in its messages and exact in its
+// JSON (sp::printable_text); a config over the memory budget reported, not
+// failed; a level too large for float counted sanely.
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "bvh/mesh_topology.h"
+#include "check/check_report_json.h"
 #include "core/glm_interop.h"
+#include "core/printable_text.h"
+#include "sim/memory_estimate.h"
 #include "soundpaint/check.h"
 #include "support/scene_builder.h"
 
@@ -189,6 +197,152 @@ TEST(Check, InfoAndSimulateWarnWhenPenetrationMostlyFails) {
   EXPECT_NE(warning.find("soundpaint check"), std::string::npos) << warning;
   config.listener_position = glm::vec3(0, 1.5f, 0);
   EXPECT_EQ(penetration_warning(probe_penetration(closed_room(), config, at_config).value()), "");
+}
+
+// A layer name with everything a hostile level would put in one: a new
+// terminal title, a screen clear, and a forged line.
+const std::string kHostileLayer = "wood\x1b]0;pwned\x07\x1b[2J\r\nsoundpaint: no findings\t\x7f";
+const std::string kHostileLayerEscaped =
+    "wood\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\u{d}\\u{a}soundpaint: no findings\\u{9}\\u{7f}";
+
+TEST(PrintableText, PrintableUtf8StaysByteForByte) {
+  for (const std::string text : {"", "concrete", "Holz.001", "C:\\levels\\a \"b\".gltf", "\xe6\x9c\xa8\xe6\x9d\x90",
+                                 "\xf0\x9f\x94\x8a", "caf\xc3\xa9", "\xc2\xa0", "\xef\xbf\xbd"})
+    EXPECT_EQ(printable_text(text), text);
+}
+
+TEST(PrintableText, ControlCodePointsAreWrittenAsCodePoints) {
+  EXPECT_EQ(printable_text(kHostileLayer), kHostileLayerEscaped);
+  EXPECT_EQ(printable_text(std::string("a\0b", 3)), "a\\u{0}b");
+  EXPECT_EQ(printable_text("\x1f"), "\\u{1f}");
+  EXPECT_EQ(printable_text("\xc2\x80\xc2\x85\xc2\x9b\xc2\x9f"), "\\u{80}\\u{85}\\u{9b}\\u{9f}");  // C1: PAD, NEL, CSI
+  EXPECT_EQ(printable_text("a\xe2\x80\xa8"
+                           "b\xe2\x80\xa9"),
+            "a\\u{2028}b\\u{2029}");                                     // line, paragraph separators
+  EXPECT_EQ(printable_text("\xe2\x80\xaegnp.exe"), "\\u{202e}gnp.exe");  // right-to-left override
+  EXPECT_EQ(printable_text("\xe2\x81\xa6\xe2\x81\xa9\xd8\x9c\xe2\x80\x8e"), "\\u{2066}\\u{2069}\\u{61c}\\u{200e}");
+}
+
+TEST(PrintableText, BytesOfInvalidUtf8AreWrittenAsBytes) {
+  EXPECT_EQ(printable_text("\xff"), "\\xff");
+  EXPECT_EQ(printable_text("a\x80z"), "a\\x80z");  // a lone continuation byte
+  EXPECT_EQ(printable_text("\x9b"
+                           "31m"),
+            "\\x9b31m");                                                  // raw 8-bit CSI
+  EXPECT_EQ(printable_text("\xc0\xaf"), "\\xc0\\xaf");                    // overlong '/'
+  EXPECT_EQ(printable_text("\xe0\x80\xaf"), "\\xe0\\x80\\xaf");           // overlong, three bytes
+  EXPECT_EQ(printable_text("\xed\xa0\x80"), "\\xed\\xa0\\x80");           // a surrogate
+  EXPECT_EQ(printable_text("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");  // above U+10FFFF
+  EXPECT_EQ(printable_text("ab\xe6\x9c"), "ab\\xe6\\x9c");                // cut short at the end
+  EXPECT_EQ(printable_text("\xe6\x9c"
+                           "a"),
+            "\\xe6\\x9ca");                                           // cut short by an ASCII byte
+  EXPECT_EQ(printable_text("\xf4\x8f\xbf\xbf"), "\xf4\x8f\xbf\xbf");  // U+10FFFF itself is well-formed
+}
+
+TEST(PrintableText, QuotingEscapesQuotesAndBackslashesOnlyWhenAsked) {
+  EXPECT_EQ(printable_text("a\"b\\c\n", TextQuoting::DoubleQuoted), "a\\\"b\\\\c\\u{a}");
+  EXPECT_EQ(printable_text("a\"b\\c\n"), "a\"b\\c\\u{a}");
+  // Bare escaping is idempotent: a message whose names were escaped can be
+  // passed through again, unchanged.
+  for (const std::string& text : {kHostileLayer, std::string("\xff\xc2\x9b\\u{1b}\\x41")})
+    EXPECT_EQ(printable_text(printable_text(text)), printable_text(text)) << text;
+}
+
+TEST(Check, LayerNamesAreEscapedInMessagesAndExactInTheReport) {
+  Scene scene;
+  add_box_faces(scene, {0, 0, 0}, {1, 1, 1}, kHostileLayer, test::kAllFaces & ~test::kMinusY);
+  Config config;
+  config.listener_position = glm::vec3(0.5f, 3, 0.5f);
+  const CheckReport report = check(scene, config);
+  const CheckFinding* open = find(report, "open_edges");
+  ASSERT_NE(open, nullptr) << codes(report);
+  EXPECT_NE(open->message.find(" (" + kHostileLayerEscaped + " 4)"), std::string::npos) << open->message;
+  EXPECT_EQ(open->message.find_first_of("\x1b\x07\r\n\t\x7f"), std::string::npos) << open->message;
+  ASSERT_EQ(open->layers.size(), 1u);
+  EXPECT_EQ(open->layers[0].name, kHostileLayer);
+  EXPECT_EQ(open->layers[0].count, 4u);
+}
+
+TEST(Check, JsonReportKeepsValidNamesExactAndMarksInvalidBytes) {
+  const std::string not_utf8 = "brick\xff\xc0\xaf";
+  Scene scene;
+  add_box_faces(scene, {0, 0, 0}, {1, 1, 1}, kHostileLayer, test::kAllFaces & ~test::kMinusY);
+  add_box_faces(scene, {3, 0, 0}, {4, 1, 1}, not_utf8, test::kAllFaces & ~test::kMinusY & ~test::kPlusY);
+  Config config;
+  config.listener_position = glm::vec3(2, 3, 0.5f);
+  const CheckReport report = check(scene, config);
+  std::string text;
+  ASSERT_NO_THROW(text = check_report_json(report));
+  const nlohmann::json json = nlohmann::json::parse(text);
+  const nlohmann::json* open = nullptr;
+  for (const nlohmann::json& f : json["findings"])
+    if (f["code"] == "open_edges") open = &f;
+  ASSERT_NE(open, nullptr) << text;
+  ASSERT_EQ((*open)["layers"].size(), 2u) << text;
+  // The most edges first: 8 round the two open sides, then 4.
+  EXPECT_EQ((*open)["layers"][0]["name"], "brick\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd") << text;
+  EXPECT_EQ((*open)["layers"][0]["count"], 8u);
+  EXPECT_EQ((*open)["layers"][1]["name"], kHostileLayer);
+  EXPECT_EQ((*open)["layers"][1]["count"], 4u);
+  EXPECT_EQ((*open)["message"], find(report, "open_edges")->message);
+}
+
+TEST(Check, ConfigOverTheMemoryBudgetIsAFindingWithTheConfigsOwnValues) {
+  Config config;
+  config.max_indicators = kMaxIndicatorsLimit;
+  config.listener_position = glm::vec3(0, 1.5f, 0);
+  CheckSettings settings;
+  settings.probe_steps = 2;
+  settings.threads = 2;
+  const Result<CheckReport> checked = check_scene(closed_room(), config, settings);
+  ASSERT_TRUE(checked) << checked.error().message;
+  const CheckReport& report = checked.value();
+  const CheckFinding* budget = find(report, "memory_budget");
+  ASSERT_NE(budget, nullptr) << codes(report);
+  const std::uint64_t needed =
+      std::max(estimate_memory(config, Backend::Cpu).total(), estimate_memory(config, Backend::Gpu).total());
+  EXPECT_GT(needed, kDefaultMemoryBudgetBytes);
+  EXPECT_EQ(budget->count, needed);
+  for (const char* part : {"max_indicators 16777216", "ray_budget 500 with max_bounces 4",
+                           "over the memory budget of 2.0 GiB", "--memory-budget "})
+    EXPECT_NE(budget->message.find(part), std::string::npos) << part << " in " << budget->message;
+  EXPECT_EQ(budget->message.find("ray_budget 2000"), std::string::npos) << budget->message;  // the probe's own
+
+  // The budget the finding advises is enough.
+  const std::size_t at = budget->message.find("--memory-budget ") + 16;
+  const std::uint64_t advised_gib = std::stoull(budget->message.substr(at));
+  EXPECT_EQ(budget->message.substr(at + std::to_string(advised_gib).size(), 1), "G") << budget->message;
+  settings.memory_budget_bytes = advised_gib << 30;
+  EXPECT_GE(settings.memory_budget_bytes, needed);
+  EXPECT_EQ(find(check_scene(closed_room(), config, settings).value(), "memory_budget"), nullptr);
+  // And a small config fits the default budget.
+  EXPECT_EQ(find(check(closed_room()), "memory_budget"), nullptr);
+}
+
+TEST(Check, LevelBeyondFloatRangeHasASaneScaleCount) {
+  // -3e38 to 3e38 is 6e38 across: more than a float holds, and than a
+  // 64-bit count. The count stops at 2^53, which JSON carries exactly.
+  Scene scene;
+  test::add_triangle(scene, {-3e38f, 0, 0}, {3e38f, 0, 0}, {0, 3e38f, 0}, "concrete");
+  const CheckReport report = check(scene);
+  const CheckFinding* scale = find(report, "scale");
+  ASSERT_NE(scale, nullptr) << codes(report);
+  EXPECT_EQ(scale->count, std::uint64_t{1} << 53);
+  EXPECT_NE(scale->message.find("the level is 6e+38 units across"), std::string::npos) << scale->message;
+}
+
+TEST(Check, ProbeStartsInsideALevelFarFromTheOrigin) {
+  // No source, listener or camera: the probe starts at the bounds' centre,
+  // (2e38 + 3e38) / 2, which must not overflow on the way.
+  Scene scene;
+  test::add_triangle(scene, {2e38f, 0, 0}, {3e38f, 0, 0}, {2e38f, 3e38f, 0}, "concrete");
+  CheckSettings settings;
+  settings.probe_steps = 1;
+  settings.threads = 2;
+  const Result<CheckReport> report = check_scene(scene, Config{}, settings);
+  ASSERT_TRUE(report) << report.error().message;
+  EXPECT_NE(find(report.value(), "scale"), nullptr);
 }
 
 }  // namespace

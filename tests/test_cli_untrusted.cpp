@@ -1,7 +1,9 @@
 // The soundpaint executable given hostile input (README "Security"): every
 // input of the attack that found issue 16, kept in tests/data/issue-16-*,
 // gets a clean non-zero exit with a one-line message, or succeeds by a
-// documented rule; outputs never replace what is not a regular file.
+// documented rule; outputs never replace what is not a regular file; names
+// from levels and configs are printed escaped (issue 39); check reports a
+// config over the memory budget as advice it can follow (issue 39).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <string>
 
 #include "sp_types.h"
+#include "support/gltf_builder.h"
 #include "support/run_command.h"
 
 namespace {
@@ -113,6 +116,127 @@ TEST(CliUntrusted, OutputsAreRegularFilesOrStandardOutput) {
   ASSERT_EQ(through.status, 0) << through.err;
   EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
   EXPECT_EQ(sp::test::read_text(dir / "runs" / "latest.csv").rfind("step,kind,source,", 0), 0u);
+}
+
+// A name as a hostile level writes it: a new terminal title, a cleared
+// screen, a red pen, and a forged line of output after a line feed.
+const std::string kHostileName = "wood\x1b]0;pwned\x07\x1b[2J\nsoundpaint: no findings\r\x1b[31m";
+const std::string kHostileNameEscaped =
+    "wood\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\u{a}soundpaint: no findings\\u{d}\\u{1b}[31m";
+
+void write_file(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// One triangle of a material named `name`, and a sound source whose node
+// and category are named `name` too.
+void write_hostile_level(const fs::path& path, const std::string& name) {
+  sp::test::GltfBuilder b;
+  b.doc["materials"] = nlohmann::json::array({{{"name", name}}});
+  b.root(b.node({{"mesh", b.unit_triangle_mesh({{"material", 0}})}}));
+  b.root(
+      b.node({{"name", name}, {"translation", {0.2, 0.2, 0.2}}, {"extras", {{"sound_source", {{"category", name}}}}}}));
+  write_file(path, b.gltf());
+}
+
+// Neither stream holds a control character but the line feeds that end
+// lines, and no line starts with the forged text.
+void expect_no_escapes(const sp::test::CommandResult& r) {
+  for (const std::string* stream : {&r.out, &r.err}) {
+    EXPECT_EQ(std::count_if(stream->begin(), stream->end(),
+                            [](char c) { return (static_cast<unsigned char>(c) < 0x20 && c != '\n') || c == 0x7f; }),
+              0)
+        << *stream;
+    EXPECT_EQ(stream->find("\nsoundpaint: no findings"), std::string::npos) << *stream;
+    EXPECT_NE(stream->rfind("soundpaint: no findings", 0), 0u) << *stream;
+  }
+}
+
+TEST(CliUntrusted, InfoPrintsNamesFromTheLevelAndConfigEscaped) {
+  ScratchDir dir("cli-names-info");
+  write_hostile_level(dir / "level.gltf", kHostileName);
+  const std::string category = "cat\x1b]0;config\x07\n";
+  write_file(dir / "config.json",
+             nlohmann::json({{"sources", {{{"position", {0, 0.5, 0}}, {"category", category}}}}}).dump());
+  const auto r = run_command(
+      kCli + " info " + (dir / "level.gltf").string() + " --config " + (dir / "config.json").string(), dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_no_escapes(r);
+  EXPECT_NE(r.out.find("\n  " + kHostileNameEscaped + " "), std::string::npos) << r.out;  // the layer
+  EXPECT_NE(r.out.find("  0 " + kHostileNameEscaped + " " + kHostileNameEscaped + " at "), std::string::npos)
+      << r.out;  // the level's source: its node's name and its category
+  EXPECT_NE(r.out.find("cat\\u{1b}]0;config\\u{7}\\u{a}"), std::string::npos) << r.out;  // the config's category
+}
+
+TEST(CliUntrusted, CheckPrintsNamesEscapedAndWritesThemExactlyInJson) {
+  ScratchDir dir("cli-names-check");
+  write_hostile_level(dir / "level.gltf", kHostileName);
+  const auto r = run_command(
+      kCli + " check " + (dir / "level.gltf").string() + " --json " + (dir / "check.json").string(), dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_no_escapes(r);
+  EXPECT_NE(r.out.find("open_edges: 3 edges have surface on one side only (" + kHostileNameEscaped + " 3)"),
+            std::string::npos)
+      << r.out;
+  const nlohmann::json report = nlohmann::json::parse(sp::test::read_text(dir / "check.json"));
+  bool found = false;
+  for (const nlohmann::json& finding : report["findings"]) {
+    if (finding["code"] != "open_edges") continue;
+    found = true;
+    ASSERT_EQ(finding["layers"].size(), 1u) << finding;
+    EXPECT_EQ(finding["layers"][0]["name"], kHostileName);
+    EXPECT_EQ(finding["layers"][0]["count"], 3);
+  }
+  EXPECT_TRUE(found) << report;
+}
+
+TEST(CliUntrusted, CheckAdvisesABudgetForAConfigOverItAndTheAdviceWorks) {
+  ScratchDir dir("cli-check-budget");
+  const std::string config = (dir / "big.json").string();
+  write_file(config, R"({"max_indicators": 16777216})");
+  const auto over = run_command(kCli + " check " + kRoom + " --config " + config, dir.path());
+  ASSERT_EQ(over.status, 0) << over.err;
+  const std::size_t line = over.out.find("\nmemory_budget: ");
+  ASSERT_NE(line, std::string::npos) << over.out;
+  const std::string finding = over.out.substr(line + 1, over.out.find('\n', line + 1) - line - 1);
+  EXPECT_NE(finding.find("max_indicators 16777216"), std::string::npos) << finding;
+  EXPECT_NE(finding.find("ray_budget 500 with max_bounces 4"), std::string::npos) << finding;  // the config's
+  EXPECT_EQ(finding.find("ray_budget 2000"), std::string::npos) << finding;                    // not the probe's
+  const std::string option = "--memory-budget ";
+  const std::size_t at = finding.find(option);
+  ASSERT_NE(at, std::string::npos) << finding;
+  const std::string advised =
+      finding.substr(at + option.size(), finding.find(' ', at + option.size()) - at - option.size());
+
+  const auto raised =
+      run_command(kCli + " check " + kRoom + " --config " + config + " --memory-budget " + advised, dir.path());
+  ASSERT_EQ(raised.status, 0) << raised.err;
+  EXPECT_EQ(raised.out.find("memory_budget"), std::string::npos) << advised << ": " << raised.out;
+  const auto lowered = run_command(kCli + " check " + kRoom + " --memory-budget 1M", dir.path());
+  ASSERT_EQ(lowered.status, 0) << lowered.err;
+  EXPECT_NE(lowered.out.find("over the memory budget of 1.0 MiB"), std::string::npos) << lowered.out;
+  expect_clean_failure("check " + kRoom + " --memory-budget 4Q", "option --memory-budget", 2);
+}
+
+TEST(CliUntrusted, CheckCountsALevelBeyondFloatRangeSanely) {
+  ScratchDir dir("cli-check-huge");
+  // One triangle from -3e38 to 3e38: 6e38 across, more than a float holds.
+  sp::test::GltfBuilder b;
+  const nlohmann::json primitive = {
+      {"attributes", {{"POSITION", b.positions({{-3e38f, 0, 0}, {3e38f, 0, 0}, {0, 3e38f, 0}})}}}};
+  b.root(b.node({{"mesh", b.mesh(nlohmann::json::array({primitive}))}}));
+  write_file(dir / "huge.gltf", b.gltf());
+  const auto r = run_command(
+      kCli + " check " + (dir / "huge.gltf").string() + " --json " + (dir / "check.json").string(), dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(sp::test::read_text(dir / "check.json"));
+  bool scale = false;
+  for (const nlohmann::json& finding : report["findings"]) {
+    EXPECT_LE(finding["count"].get<std::uint64_t>(), std::uint64_t{1} << 53) << finding;
+    if (finding["code"] == "scale") {
+      scale = true;
+      EXPECT_EQ(finding["count"].get<std::uint64_t>(), std::uint64_t{1} << 53) << finding;  // 6e38, clamped
+    }
+  }
+  EXPECT_TRUE(scale) << report;
 }
 
 }  // namespace

@@ -12,8 +12,17 @@
 #include "soundpaint/config.h"
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
+#include "soundpaint/simulation.h"
 
 namespace sp {
+
+// A layer a finding concerns, and how many of the finding's edges, triangles
+// or probe events are on it. `name` is the layer's name exactly as the scene
+// gives it (Scene::layer_names), not escaped: it is data, for tools.
+struct CheckLayerCount {
+  std::string name;
+  std::uint64_t count = 0;
+};
 
 // One finding: advice, not an error. Codes (stable, for tools):
 //   open_edges            edges with surface on one side only: the mesh is not closed
@@ -25,10 +34,24 @@ namespace sp {
 //   wall_thickness        in the probe at the config's max_wall_thickness,
 //                         more than half did, though ways out exist
 //   back_faces            in the probe, rays in air struck the backs of faces
+//   memory_budget         the config's rays and indicators may need more
+//                         memory than memory_budget_bytes, so simulators
+//                         created with that budget refuse the config
 struct CheckFinding {
   std::string code;
-  std::uint64_t count = 0;  // edges, triangles, metres across (scale), or probe events
-  std::string message;      // one line: what was found and what to do about it
+  // Edges, triangles, probe events; for scale, the level's largest extent
+  // (rounded, at most 2^53, the largest count every JSON reader holds
+  // exactly); for memory_budget, the bytes the config may need.
+  std::uint64_t count = 0;
+  // One line: what was found and what to do about it. The layer names in it
+  // are escaped (README "Security": control characters as \u{1b}, bytes
+  // that are not UTF-8 as \xff), so it holds no control character, no line
+  // break and no invalid UTF-8, whatever the scene calls its layers.
+  std::string message;
+  // For open_edges, inconsistent_winding, penetration_misses and
+  // wall_thickness: every layer concerned, the most first (the message
+  // names at most four). Empty for the other codes.
+  std::vector<CheckLayerCount> layers;
 };
 
 struct PenetrationProbe {
@@ -63,6 +86,12 @@ struct CheckSettings {
   std::uint32_t probe_rays_per_step = 2000;
   float probe_reach = 4.0f;
   unsigned threads = 0;  // CPU threads of the probe; 0: all cores
+  // The budget a simulation of this config will be created with
+  // (CpuSettings / GpuSettings::memory_budget_bytes, `--memory-budget`):
+  // a config whose estimate exceeds it is reported (memory_budget). The
+  // probe itself runs on small ray and indicator counts of its own, so a
+  // config over budget is advice, never a failure of the check.
+  std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
 };
 
 // Checks `scene` with `config`'s layers (their sheet_thickness decides which

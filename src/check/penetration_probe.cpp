@@ -15,6 +15,11 @@ namespace {
 
 // Probe sources reach this far (metres): across any room, not across a level.
 constexpr float kProbeRange = 200.0f;
+// The probe reads counters, never indicators: a small ring of its own, so
+// that the config's max_indicators (up to 2^24, gigabytes) costs the probe
+// nothing and cannot push it over a memory budget. check_scene reports the
+// config's own needs against the user's budget instead (memory_budget).
+constexpr std::uint32_t kProbeMaxIndicators = 1024;
 
 glm::vec3 bounds_centre(const Scene& scene) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
@@ -22,7 +27,7 @@ glm::vec3 bounds_centre(const Scene& scene) {
     lo = glm::min(lo, v);
     hi = glm::max(hi, v);
   }
-  return (lo + hi) * 0.5f;
+  return lo * 0.5f + hi * 0.5f;  // lo + hi would overflow in a level reaching past +-1.7e38
 }
 
 // Where the probe's rays start: the sources, else the listener, else the
@@ -39,10 +44,12 @@ std::vector<glm::vec3> probe_origins(const Scene& scene, const Config& config) {
 
 // The config as the probe runs it: the geometry and the layers' sheets
 // as given, acoustics chosen so that every layer is penetrated often and
-// energy never ends a ray before it has found its way out.
+// energy never ends a ray before it has found its way out, rays and
+// indicators counted by the probe's settings, not the config's.
 Config probe_config(const Scene& scene, const Config& config, const CheckSettings& settings) {
   Config probe = config;
   probe.ray_budget = settings.probe_rays_per_step;
+  probe.max_indicators = kProbeMaxIndicators;
   probe.max_wall_thickness = std::max(config.max_wall_thickness, settings.probe_reach);
   probe.max_bounces = 8;
   probe.min_energy = 0.001f;

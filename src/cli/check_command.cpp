@@ -1,11 +1,11 @@
 #include <cstdio>
 #include <optional>
 
-#include <nlohmann/json.hpp>
-
+#include "check/check_report_json.h"
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
+#include "core/printable_text.h"
 #include "io/atomic_file.h"
 #include "soundpaint/check.h"
 
@@ -13,52 +13,46 @@ namespace sp::cli {
 namespace {
 
 constexpr const char* kHelp =
-    "usage: soundpaint check SCENE [--config FILE] [--json OUT.json] [--max-triangles N] [--allow-external-uris]\n"
+    "usage: soundpaint check SCENE [--config FILE] [--json OUT.json] [--memory-budget SIZE] [--max-triangles N]\n"
+    "                        [--allow-external-uris]\n"
     "\n"
     "Tells whether SCENE suits the ray model before you wonder why sound never\n"
     "goes through a wall: open edges, inconsistent winding, degenerate triangles,\n"
-    "units that are probably not metres, and a short probe simulation that counts\n"
-    "how often a ray that penetrates a surface finds no way out of matter.\n"
+    "units that are probably not metres, a short probe simulation that counts\n"
+    "how often a ray that penetrates a surface finds no way out of matter, and a\n"
+    "config whose rays and indicators need more than the memory budget.\n"
     "Prints one line per finding, each saying what to do about it. Findings are\n"
-    "advice: the exit status is 0 whenever the scene loads.\n"
+    "advice: the exit status is 0 whenever the scene and config load.\n"
     "  --config FILE   JSON configuration (its layers decide which are sheets)\n"
-    "  --json FILE     also write {\"triangles\", \"findings\": [{\"code\", \"count\", \"message\"}],\n"
-    "                  \"probe\": {...}}\n";
-
-std::string report_json(const CheckReport& report) {
-  nlohmann::ordered_json json;
-  json["triangles"] = report.triangles;
-  json["findings"] = nlohmann::ordered_json::array();
-  for (const CheckFinding& f : report.findings)
-    json["findings"].push_back({{"code", f.code}, {"count", f.count}, {"message", f.message}});
-  json["probe"] = {{"penetrations", report.probe.penetrations},
-                   {"no_way_out", report.probe.no_way_out},
-                   {"no_way_out_within_max_wall_thickness", report.probe_at_config.no_way_out},
-                   {"hits", report.probe.hits},
-                   {"back_face_hits", report.probe.back_face_hits}};
-  return json.dump(2) + "\n";
-}
+    "  --json FILE     also write {\"triangles\", \"findings\": [{\"code\", \"count\", \"message\",\n"
+    "                  \"layers\": [{\"name\", \"count\"}]}], \"probe\": {...}}: names exact, in JSON\n"
+    "Names from the scene and config (layers) are printed escaped: control\n"
+    "characters as \\u{1b}, bytes that are not UTF-8 as \\xff (README: Security).\n";
 
 }  // namespace
 
 int run_check(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, with_options({"--config", "--json"}, kSceneLimitValueOptions),
-                                 with_options({"--help"}, kSceneLimitFlagOptions));
+  ParsedArgs parsed = parse_args(
+      args, with_options(with_options({"--config", "--json"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
+      with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(scene_limit_help().c_str(), stdout);
+    std::fputs(memory_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
     throw Exception(ErrorCode::InvalidArgument, "check needs exactly one SCENE argument (see --help)");
+  CheckSettings settings;
+  settings.memory_budget_bytes = memory_budget(parsed);
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();
   std::optional<AtomicFile> json_file;
   if (auto path = parsed.value("--json")) json_file.emplace(*path);  // a refused output fails before the scene is read
   const Scene scene = load_scene(parsed.positionals[0], scene_load_options(parsed)).value();
 
-  const CheckReport report = check_scene(scene, config).value();
-  std::printf("scene: %s\ntriangles: %llu\n", scene.path.string().c_str(),
+  const CheckReport report = check_scene(scene, config, settings).value();
+  std::printf("scene: %s\ntriangles: %llu\n", printable_text(scene.path.string()).c_str(),
               static_cast<unsigned long long>(report.triangles));
   std::printf(
       "probe: %llu penetrations, %.1f%% found no way out (%.1f%% within max_wall_thickness); %llu hits, "
@@ -67,9 +61,12 @@ int run_check(const std::vector<std::string>& args) {
       100.0 * report.probe_at_config.miss_share(), static_cast<unsigned long long>(report.probe.hits),
       static_cast<unsigned long long>(report.probe.back_face_hits));
   if (report.findings.empty()) std::printf("no findings: closed, consistently wound solids in metres\n");
-  for (const CheckFinding& f : report.findings) std::printf("%s: %s\n", f.code.c_str(), f.message.c_str());
+  // The library escapes the names in its messages; escaping again changes
+  // nothing then, and keeps this one line whatever a message holds.
+  for (const CheckFinding& f : report.findings)
+    std::printf("%s: %s\n", f.code.c_str(), printable_text(f.message).c_str());
   if (json_file) {
-    json_file->write(report_json(report));
+    json_file->write(check_report_json(report));
     json_file->commit();
   }
   return 0;

@@ -9,6 +9,7 @@
 #include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
+#include "core/printable_text.h"
 #include "sim/step_plan.h"
 #include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
@@ -49,17 +50,20 @@ int run_info(const std::vector<std::string>& args) {
   World world = make_world(scene, config).value();
   warn_if_penetration_fails(scene, config);
 
-  std::printf("scene: %s\n", scene.path.string().c_str());
+  // Every name below is the level's or the config's: data, printed escaped
+  // (core/printable_text.h) so that none can steer the terminal.
+  std::printf("scene: %s\n", printable_text(scene.path.string()).c_str());
   std::printf("triangles: %zu\n", scene.triangle_count());
   std::printf("layers: %zu\n", world.layer_names.size());
   for (std::size_t l = 0; l < world.layer_names.size(); ++l)
-    std::printf("  %-16s %8u triangles  reflect_probability %.2f  attenuation %.2f/m\n", world.layer_names[l].c_str(),
-                world.layer_triangle_counts[l], double(world.layer_properties[l].reflect_probability),
-                double(world.layer_properties[l].attenuation));
+    std::printf("  %-16s %8u triangles  reflect_probability %.2f  attenuation %.2f/m\n",
+                printable_text(world.layer_names[l]).c_str(), world.layer_triangle_counts[l],
+                double(world.layer_properties[l].reflect_probability), double(world.layer_properties[l].attenuation));
   std::printf("sources: %zu\n", world.sources.size());
   for (std::size_t id = 0; id < world.sources.size(); ++id) {
     const SourceDesc& s = world.sources[id];
-    std::printf("  %2zu %-16s %-12s at ", id, s.name.empty() ? "-" : s.name.c_str(), s.category.c_str());
+    std::printf("  %2zu %-16s %-12s at ", id, s.name.empty() ? "-" : printable_text(s.name).c_str(),
+                printable_text(s.category).c_str());
     print_vec(s.position);
     std::printf(" color ");
     print_vec(world.source_colors[id]);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/printable_text.h"
 #include "soundpaint/simulation.h"
 
 namespace sp::cli {
@@ -37,7 +38,8 @@ std::uint64_t memory_budget(const ParsedArgs& parsed) {
   if (!text) return kDefaultMemoryBudgetBytes;
   const auto bad = [&] {
     return Exception(ErrorCode::InvalidArgument,
-                     "option --memory-budget: expected a size such as 512M, 4G or a byte count, got '" + *text + "'");
+                     "option --memory-budget: expected a size such as 512M, 4G or a byte count, got '" +
+                         printable_text(*text) + "'");
   };
   std::uint64_t value = 0;
   const char* const end = text->data() + text->size();

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/printable_text.h"
 #include "soundpaint/result.h"
 
 namespace sp::json_fields {
@@ -27,25 +28,9 @@ constexpr std::size_t kMaxShownValueChars = 40;
   throw Exception(ErrorCode::InvalidConfig, std::move(line));
 }
 
-// Key names come from the file; escape what would break a one-line message.
-std::string escape_for_message(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out.push_back('\\');
-      out.push_back(c);
-    } else if (byte < 0x20 || byte == 0x7f) {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned>(byte));
-      out.append(hex);
-    } else {
-      out.push_back(c);
-    }
-  }
-  return out;
-}
+// Key names come from the file; they are shown between double quotes, so
+// the quotes and backslashes inside are escaped too (core/printable_text.h).
+std::string escape_for_message(std::string_view text) { return printable_text(text, TextQuoting::DoubleQuoted); }
 
 // Appends `value` in compact JSON to `out`, stopping once `out` is longer
 // than `limit`: a huge value costs no more than its first few elements, and
