@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "io/standard_streams.h"
+#include "io/temporary_files.h"
 #include "soundpaint/result.h"
 
 namespace {
@@ -25,10 +27,7 @@ constexpr const char* kUsage =
     "\n"
     "Run 'soundpaint <command> --help' for the options of a command.\n";
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+int run_command(std::vector<std::string> args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
@@ -50,4 +49,20 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "soundpaint: error: %s\n", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Before any file is opened: a closed descriptor 1 must not become the
+  // next output file.
+  if (!sp::reserve_standard_streams()) return 1;
+  sp::remove_temporary_files_on_fatal_signals();
+  const int status = run_command(std::vector<std::string>(argv + 1, argv + argc));
+  // Output lost on a full disk or a closed stdout is a failure, not a 0.
+  if (const auto error = sp::standard_output_error()) {
+    std::fprintf(stderr, "soundpaint: error: cannot write standard output: %s\n", error->c_str());
+    return status == 0 ? 1 : status;
+  }
+  return status;
 }
