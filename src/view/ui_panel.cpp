@@ -303,6 +303,11 @@ PanelActions UiPanel::build(const PanelStats& stats, PanelState& state, const st
     if (ImGui::Begin("soundpaint", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::TextUnformatted(stats.device.c_str());
       ImGui::Text("backend: %s", stats.backend.c_str());
+      if (!stats.notice.empty()) {
+        ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+        ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "%s", stats.notice.c_str());
+        ImGui::PopTextWrapPos();
+      }
       ImGui::Separator();
       ImGui::Text("frame       %8.2f ms", stats.frame_ms);
       ImGui::Text("simulation  %8.2f ms", stats.simulation_ms);

@@ -41,6 +41,9 @@ struct PanelStats {
   bool paused = false;
   bool listener_pinned = false;
   glm::vec3 eye{0.0f};
+  // Why the last reload or rebuild was refused (the running config stays);
+  // empty once one succeeds.
+  std::string notice;
 };
 
 // What the panel edits in place; the viewer applies changes.

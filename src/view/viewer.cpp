@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <iostream>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -16,16 +18,16 @@
 #include <glm/geometric.hpp>
 
 #include "draw/image_barrier.h"
-#include "vk/barriers.h"
-#include "draw/png_writer.h"
 #include "draw/rendering.h"
-#include "draw/scene_mesh.h"
 #include "draw/scene_pass.h"
 #include "bvh/bvh.h"
 #include "soundpaint/config.h"
 #include "soundpaint/display.h"
 #include "soundpaint/visualizer.h"
+#include "view/config_watch.h"
 #include "view/fly_camera.h"
+#include "view/painting.h"
+#include "view/screenshot.h"
 #include "view/swapchain.h"
 #include "view/ui_panel.h"
 #include "view/window.h"
@@ -46,7 +48,7 @@ const char* const kControls =
     "  P             pin the listener where it is / let it follow the camera again\n"
     "  F1            hide / show the panel;  Esc: quit\n"
     "  The panel also sets the ray budget, diffraction and every display setting;\n"
-    "  a --config file is reloaded when it changes.\n";
+    "  a --config file is reloaded when it changes (a bad one is not: the running config stays).\n";
 
 namespace {
 
@@ -78,44 +80,25 @@ struct Session {
   bool listener_pinned = false;
 };
 
-std::filesystem::file_time_type modified(const std::optional<std::string>& path) {
-  std::error_code error;
-  if (!path) return {};
-  const auto time = std::filesystem::last_write_time(*path, error);
-  return error ? std::filesystem::file_time_type{} : time;
+// What the viewer adds to a config, at start and on every reload alike.
+void apply_viewer_defaults(Config& config, const Scene& scene) {
+  // Like render: arrows at the screen's edge unless the config says no.
+  if (!config.display.offscreen_arrows) config.display.offscreen_arrows = true;
+  if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
 }
+
+// A change of config or backend, applied at the top of the next frame. The
+// running config and painting stay until its painting has been built.
+struct Change {
+  Config config;
+  BackendChoice backend = BackendChoice::Auto;
+  bool reload = false;  // the --config file's; else the panel's or a key's
+};
 
 std::vector<std::string> category_names() {
   std::vector<std::string> names;
   for (const BuiltinCategory& c : builtin_categories()) names.emplace_back(c.name);
   return names;
-}
-
-// The level as one draw, and the simulation and indicators as a visualizer
-// on the viewer's own device: rebuilt together when the config, the ray
-// budget, diffraction or the backend change.
-struct Painting {
-  std::unique_ptr<draw::ScenePass> scene_pass;
-  std::unique_ptr<Visualizer> visualizer;
-};
-
-// `world` is make_world(session.scene, session.config): at start-up the one
-// run_viewer checked, afterwards a fresh one (a World takes a BVH build).
-Painting paint(vk::Context& context, const Swapchain& swapchain, Session& session, World world) {
-  Painting painting;
-  painting.scene_pass = std::make_unique<draw::ScenePass>(context, draw::build_scene_mesh(world, true),
-                                                          swapchain.format(), Swapchain::kDepthFormat);
-  const HostVulkan host{.instance = context.instance(),
-                        .physical_device = context.physical_device(),
-                        .device = context.device(),
-                        .queue_family = context.queue_family()};
-  const DrawTarget target{.color_format = swapchain.format(), .depth_format = Swapchain::kDepthFormat};
-  VisualizerSettings settings;
-  settings.backend = session.backend;
-  painting.visualizer = Visualizer::create(host, target, std::move(world), settings).value();
-  for (const SourceDesc& source : session.placed) painting.visualizer->scene().add_source(source).value();
-  painting.visualizer->set_scene_depth(swapchain.depth_views()).value();
-  return painting;
 }
 
 // The scene pass clears and writes depth; the indicator pass then tests
@@ -144,8 +127,10 @@ void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_v
 // flight, and what is painted.
 class Viewer {
  public:
-  // `first_world`: make_world(session.scene, session.config), already made.
-  Viewer(const ViewerOptions& options, Window& window, Session session, World first_world);
+  // `first_world`: make_world(session.scene, session.config), already made;
+  // `watch`: the --config file's, already polled once for session.config.
+  Viewer(const ViewerOptions& options, Window& window, Session session, World first_world,
+         std::optional<ConfigWatch> watch);
   ~Viewer();
   void run();
   std::uint32_t validation_messages() const { return context_->validation_message_count(); }
@@ -153,11 +138,13 @@ class Viewer {
  private:
   void handle_input(float seconds);
   void place_or_play(bool play);
-  void rebuild();
+  Change& change();
+  void check_config();
+  void apply_change();
+  void show_session_in_panel();
   void recreate_swapchain();
   void read_timestamps(std::uint32_t slot);
   bool record_and_present(std::uint32_t slot, bool last, double dt);
-  void write_screenshot();
 
   const ViewerOptions& options_;
   Window& window_;
@@ -173,8 +160,7 @@ class Viewer {
   vk::UniqueQueryPool queries_;
   std::array<vk::Buffer, kFramesInFlight> totals_;  // record_totals' copy, read after the slot's fence
   double timestamp_ms_ = 0.0;                       // milliseconds per timestamp tick
-  vk::Buffer screenshot_buffer_;
-  VkExtent2D screenshot_extent_{};
+  Screenshot screenshot_;
   Painting painting_;
   std::unique_ptr<UiPanel> panel_;
   PanelState panel_state_;
@@ -184,14 +170,16 @@ class Viewer {
   glm::vec2 last_cursor_{0.0f};
   bool paused_ = false;
   bool step_once_ = false;
-  bool rebuild_ = false;
+  std::optional<Change> change_;
   bool swapchain_stale_ = false;
-  std::filesystem::file_time_type config_time_;
+  std::optional<ConfigWatch> watch_;
+  bool script_ended_ = false;  // config_checks_from_stdin: the input has ended
   std::uint64_t frame_ = 0;
 };
 
-Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, World first_world)
-    : options_(options), window_(window), session_(std::move(session)) {
+Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, World first_world,
+               std::optional<ConfigWatch> watch)
+    : options_(options), window_(window), session_(std::move(session)), watch_(std::move(watch)) {
   vk::ContextSettings settings;
   settings.instance_extensions = Window::required_instance_extensions();
   settings.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
@@ -226,17 +214,16 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, Wo
   const VkExtent2D extent = swapchain_->extent();
   camera_ = FlyCamera::from(
       draw::make_view_camera(session_.scene.camera, first_world, options_.camera, extent.width, extent.height));
-  painting_ = paint(*context_, *swapchain_, session_, std::move(first_world));
-  panel_state_.ray_budget = session_.config.ray_budget;
-  panel_state_.diffraction = session_.config.diffraction.enabled;
-  panel_state_.display = painting_.visualizer->display();
+  painting_ =
+      paint(*context_, *swapchain_, std::move(first_world),
+            {.backend = session_.backend, .memory_budget_bytes = options_.memory_budget_bytes}, session_.placed);
+  show_session_in_panel();
   panel_ = std::make_unique<UiPanel>(window_.handle(), context_->instance(), context_->physical_device(), device,
                                      context_->queue_family(), context_->queue(), swapchain_->format(),
                                      swapchain_->image_count(), swapchain_->views(), extent);
   panel_->set_visible(options_.panel);
   stats_.device = context_->description();
-  config_time_ = modified(options_.config_path);
-  if (options_.config_path) std::fprintf(stderr, "view: watching %s for changes\n", options_.config_path->c_str());
+  if (watch_) std::fprintf(stderr, "view: watching %s for changes\n", watch_->path().c_str());
   last_cursor_ = window_.cursor();
 }
 
@@ -247,14 +234,61 @@ Viewer::~Viewer() {
   if (painting_.visualizer) (void)painting_.visualizer->wait_for_simulation();
 }
 
-void Viewer::rebuild() {
+Change& Viewer::change() {
+  if (!change_) change_ = Change{.config = session_.config, .backend = session_.backend};
+  return *change_;
+}
+
+void Viewer::check_config() {
+  std::optional<Result<Config>> found = watch_->poll();
+  if (!found) return;
+  if (!*found) {
+    const std::string line = found->error().message + " (keeping the running config)";
+    std::fprintf(stderr, "view: %s\n", line.c_str());
+    stats_.notice = line;
+    return;
+  }
+  Change& wanted = change();
+  wanted.config = std::move(found->value());
+  apply_viewer_defaults(wanted.config, session_.scene);
+  wanted.reload = true;
+}
+
+// The new painting is built beside the running one, which goes only once
+// the new one stands: a config that parses but cannot run (over the memory
+// budget, a source the level refuses, a device error) leaves the viewer as
+// it was, and says why.
+void Viewer::apply_change() {
+  Change wanted = std::move(*change_);
+  change_.reset();
   SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
   (void)painting_.visualizer->wait_for_simulation();
-  const DisplaySettings display = painting_.visualizer->display();
-  painting_ = Painting{};
-  session_.config.display = display;
-  painting_ = paint(*context_, *swapchain_, session_, make_world(session_.scene, session_.config).value());
-  rebuild_ = false;
+  // The panel's display edits, already applied, outlive a rebuild of its
+  // own; a reloaded file brings its own display.
+  if (!wanted.reload) wanted.config.display = painting_.visualizer->display();
+  try {
+    Painting next =
+        paint(*context_, *swapchain_, make_world(session_.scene, wanted.config).value(),
+              {.backend = wanted.backend, .memory_budget_bytes = options_.memory_budget_bytes}, session_.placed);
+    painting_ = std::move(next);
+    session_.config = std::move(wanted.config);
+    session_.backend = wanted.backend;
+    stats_.notice.clear();
+    if (wanted.reload) std::fprintf(stderr, "view: reloaded %s\n", watch_->path().c_str());
+  } catch (const std::exception& e) {
+    const std::string line = wanted.reload ? watch_->path().string() + ": " + e.what() + " (keeping the running config)"
+                                           : std::string(e.what()) + " (keeping the running settings)";
+    std::fprintf(stderr, "view: %s\n", line.c_str());
+    stats_.notice = line;
+  }
+  show_session_in_panel();
+}
+
+// The panel's controls show what runs, after a rebuild that failed too.
+void Viewer::show_session_in_panel() {
+  panel_state_.ray_budget = session_.config.ray_budget;
+  panel_state_.diffraction = session_.config.diffraction.enabled;
+  panel_state_.display = painting_.visualizer->display();
 }
 
 void Viewer::recreate_swapchain() {
@@ -302,10 +336,8 @@ void Viewer::handle_input(float seconds) {
   if (window_.key_pressed(GLFW_KEY_N) && keys) step_once_ = true;
   if (window_.key_pressed(GLFW_KEY_P) && keys) session_.listener_pinned = !session_.listener_pinned;
   if (window_.key_pressed(GLFW_KEY_F1) && keys) panel_->set_visible(!panel_->visible());
-  if (window_.key_pressed(GLFW_KEY_B) && keys) {
-    session_.backend = painting_.visualizer->backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
-    rebuild_ = true;
-  }
+  if (window_.key_pressed(GLFW_KEY_B) && keys)
+    change().backend = painting_.visualizer->backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
   const bool shift = window_.key_down(GLFW_KEY_LEFT_SHIFT) || window_.key_down(GLFW_KEY_RIGHT_SHIFT);
   if (keys) {
     glm::vec3 axes(0.0f);
@@ -415,24 +447,7 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
 
   const bool screenshot = last && options_.screenshot && swapchain_->readable();
   if (screenshot) {
-    screenshot_extent_ = extent;
-    const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
-    screenshot_buffer_ =
-        vk::Buffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback, "viewer screenshot");
-    // RAW: the passes' colour writes land before the copy reads the image.
-    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshot_buffer_.get(), 1, &region);
-    // Device -> host: the copy is visible to host reads after the fence.
-    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                       VK_ACCESS_2_HOST_READ_BIT);
-    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COPY_BIT, 0, VK_PIPELINE_STAGE_2_NONE, 0);
+    screenshot_.record(*context_, cmd, color, extent);
   } else {
     // Presentation waits on the semaphore the submit signals after this.
     draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -482,22 +497,9 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
   }
   if (screenshot) {
     SP_VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
-    write_screenshot();
+    screenshot_.write(*options_.screenshot, swapchain_->format());
   }
   return true;
-}
-
-void Viewer::write_screenshot() {
-  draw::RgbaImage picture;
-  picture.width = screenshot_extent_.width;
-  picture.height = screenshot_extent_.height;
-  const auto* bytes = static_cast<const std::uint8_t*>(screenshot_buffer_.mapped());
-  picture.pixels.assign(bytes, bytes + std::size_t{picture.width} * picture.height * 4);
-  const VkFormat format = swapchain_->format();
-  if (format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_B8G8R8A8_UNORM) {
-    for (std::size_t i = 0; i < picture.pixels.size(); i += 4) std::swap(picture.pixels[i], picture.pixels[i + 2]);
-  }
-  draw::write_png(*options_.screenshot, picture);
 }
 
 void Viewer::run() {
@@ -515,28 +517,19 @@ void Viewer::run() {
     handle_input(static_cast<float>(std::min(seconds, 0.1)));
     if (window_.should_close()) break;
 
-    // The config file: reloaded when it changes (checked twice a second).
-    if (options_.config_path && frame_ % 30 == 0) {
-      const auto time = modified(options_.config_path);
-      if (time != config_time_) {
-        config_time_ = time;
-        auto reloaded = load_config(*options_.config_path);
-        if (reloaded) {
-          session_.config = std::move(reloaded.value());
-          panel_state_.ray_budget = session_.config.ray_budget;
-          panel_state_.diffraction = session_.config.diffraction.enabled;
-          panel_state_.display = session_.config.display;
-          rebuild_ = true;
-          std::fprintf(stderr, "view: reloaded %s\n", options_.config_path->c_str());
-        } else {
-          std::fprintf(stderr, "view: %s (keeping the previous config)\n", reloaded.error().message.c_str());
-        }
+    // The config file: reloaded when it changes (checked twice a second,
+    // or at each line of a scripted run's input).
+    if (watch_ && options_.config_checks_from_stdin && !script_ended_) {
+      std::string line;
+      if (std::getline(std::cin, line)) {
+        check_config();
+      } else {
+        script_ended_ = true;
       }
+    } else if (watch_ && !options_.config_checks_from_stdin && frame_ % 30 == 0) {
+      check_config();
     }
-    if (rebuild_) {
-      session_.config.display = panel_state_.display;
-      rebuild();
-    }
+    if (change_) apply_change();
     if (swapchain_stale_ || swapchain_->extent().width != window_.framebuffer_size().width ||
         swapchain_->extent().height != window_.framebuffer_size().height) {
       recreate_swapchain();
@@ -569,18 +562,10 @@ void Viewer::run() {
     if (actions.toggle_pause) paused_ = !paused_;
     if (actions.single_step) step_once_ = true;
     if (actions.toggle_pin) session_.listener_pinned = !session_.listener_pinned;
-    if (actions.switch_backend) {
-      session_.backend = visualizer.backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
-      rebuild_ = true;
-    }
-    if (actions.ray_budget_changed) {
-      session_.config.ray_budget = panel_state_.ray_budget;
-      rebuild_ = true;
-    }
-    if (actions.diffraction_changed) {
-      session_.config.diffraction.enabled = panel_state_.diffraction;
-      rebuild_ = true;
-    }
+    if (actions.switch_backend)
+      change().backend = visualizer.backend() == Backend::Gpu ? BackendChoice::Cpu : BackendChoice::Gpu;
+    if (actions.ray_budget_changed) change().config.ray_budget = panel_state_.ray_budget;
+    if (actions.diffraction_changed) change().config.diffraction.enabled = panel_state_.diffraction;
     if (actions.display_changed) {
       auto applied = visualizer.set_display(panel_state_.display);
       if (!applied) std::fprintf(stderr, "view: %s\n", applied.error().message.c_str());
@@ -601,10 +586,14 @@ void Viewer::run() {
 std::uint32_t run_viewer(const ViewerOptions& options) {
   Session session;
   session.scene = load_scene(options.scene_path, options.scene_options).value();
-  if (options.config_path) session.config = load_config(*options.config_path).value();
-  // Like render: arrows at the screen's edge unless the config says no.
-  if (!session.config.display.offscreen_arrows) session.config.display.offscreen_arrows = true;
-  if (!session.config.listener_position && !session.scene.camera) session.config.listener_position = glm::vec3(0.0f);
+  // The watch's first read is the config that runs: a change made while
+  // the viewer starts is not mistaken for the one it started with.
+  std::optional<ConfigWatch> watch;
+  if (options.config_path) {
+    watch.emplace(*options.config_path);
+    session.config = watch->poll().value().value();
+  }
+  apply_viewer_defaults(session.config, session.scene);
   session.backend = options.backend;
   // Bad sources and the like fail before a window opens; the World is the
   // viewer's first.
@@ -613,7 +602,7 @@ std::uint32_t run_viewer(const ViewerOptions& options) {
   Window window(options.width, options.height, "soundpaint view: " + options.scene_path);
   std::uint32_t messages = 0;
   {
-    Viewer viewer(options, window, std::move(session), std::move(world));
+    Viewer viewer(options, window, std::move(session), std::move(world), std::move(watch));
     viewer.run();
     messages = viewer.validation_messages();
   }

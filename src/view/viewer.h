@@ -16,7 +16,9 @@ namespace sp::view {
 
 struct ViewerOptions {
   std::string scene_path;
-  std::optional<std::string> config_path;  // reloaded when the file changes
+  // Reloaded when its bytes change; a reload that fails for any reason
+  // keeps the running config and says why.
+  std::optional<std::string> config_path;
   SceneLoadOptions scene_options;
   BackendChoice backend = BackendChoice::Auto;
   std::uint32_t width = 1280;
@@ -32,6 +34,15 @@ struct ViewerOptions {
   std::uint64_t resize_frame = 0;
   std::uint32_t resize_width = 0;
   std::uint32_t resize_height = 0;
+  // A config whose rays and indicators could need more memory is refused,
+  // at start and on reload (--memory-budget).
+  std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
+  // Scripted runs: instead of twice a second, the config file is checked
+  // once for each line read from standard input, the viewer waiting for
+  // that line before each frame; when the input ends the remaining frames
+  // run with no more checks. A test can then change the file between two
+  // known checks.
+  bool config_checks_from_stdin = false;
 };
 
 // The keys and mouse, for --help and the panel.
