@@ -166,6 +166,24 @@ TEST(CliUntrusted, InfoPrintsNamesFromTheLevelAndConfigEscaped) {
   EXPECT_NE(r.out.find("cat\\u{1b}]0;config\\u{7}\\u{a}"), std::string::npos) << r.out;  // the config's category
 }
 
+// Error messages quote what they could not read: a config cut off inside a
+// string that holds escape sequences, and a scene whose glTF JSON breaks
+// inside one, reach stderr escaped, on one line.
+TEST(CliUntrusted, ErrorsQuotingTheInputAreEscaped) {
+  ScratchDir dir("cli-names-errors");
+  write_file(dir / "config.json", "{\"ray_budget\": 1, \"x\": \"\xff\x1b]0;title\x07\x1b[2J\n");
+  write_file(dir / "scene.gltf", "{\"asset\": {\"version\": \"\xff\x1b[2J");
+  for (const std::string& args :
+       {"simulate " + kRoom + " --config " + (dir / "config.json").string(), "info " + (dir / "scene.gltf").string()}) {
+    SCOPED_TRACE(args);
+    const auto r = run_command(kCli + " " + args, dir.path());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    expect_no_escapes(r);
+    EXPECT_EQ(r.err.find('\xff'), std::string::npos) << r.err;
+  }
+}
+
 TEST(CliUntrusted, CheckPrintsNamesEscapedAndWritesThemExactlyInJson) {
   ScratchDir dir("cli-names-check");
   write_hostile_level(dir / "level.gltf", kHostileName);

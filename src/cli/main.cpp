@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/printable_text.h"
 #include "io/standard_streams.h"
 #include "io/temporary_files.h"
 #include "soundpaint/result.h"
@@ -40,13 +41,16 @@ int run_command(std::vector<std::string> args) {
     if (command == "render") return sp::cli::run_render(args);
     if (command == "check") return sp::cli::run_check(args);
     if (command == "view") return sp::cli::run_view(args);
-    std::fprintf(stderr, "soundpaint: error: unknown command '%s' (try 'soundpaint --help')\n", command.c_str());
+    std::fprintf(stderr, "soundpaint: error: unknown command '%s' (try 'soundpaint --help')\n",
+                 sp::printable_text(command).c_str());
     return 2;
   } catch (const sp::Exception& e) {
-    std::fprintf(stderr, "soundpaint: error: %s\n", e.what());
+    // Messages quote names from files (escaped where they are made); once
+    // more here, so that no message can reach the terminal raw.
+    std::fprintf(stderr, "soundpaint: error: %s\n", sp::printable_text(e.what()).c_str());
     return e.error().code == sp::ErrorCode::InvalidArgument ? 2 : 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "soundpaint: error: %s\n", e.what());
+    std::fprintf(stderr, "soundpaint: error: %s\n", sp::printable_text(e.what()).c_str());
     return 1;
   }
 }

@@ -256,7 +256,7 @@ json parse_strict(std::string_view text, std::string_view origin) {
       if (close != std::string::npos) detail.erase(0, close + 2);
     }
     std::replace(detail.begin(), detail.end(), '\n', ' ');
-    throw_config_error(origin, "malformed JSON: " + detail);
+    throw_config_error(origin, "malformed JSON: " + printable_text(detail));
   }
 }
 

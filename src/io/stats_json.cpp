@@ -54,7 +54,9 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
   timing["ms_per_step_p99"] = percentile(timings.wall_ms, 99.0);
   if (!timings.gpu_ms.empty()) timing["gpu_ms_per_step_median"] = median(timings.gpu_ms);
   json["timing"] = timing;
-  return json.dump(2) + "\n";
+  // Layer names from a Scene built in code need not be UTF-8: such bytes
+  // become U+FFFD rather than throw (files' names are UTF-8 already).
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace sp

@@ -48,7 +48,7 @@ std::string one_line(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ';');
   std::replace(text.begin(), text.end(), '\r', ' ');
   while (!text.empty() && (text.back() == ';' || text.back() == ' ')) text.pop_back();
-  return printable(text);
+  return printable_text(text);
 }
 
 bool has_glb_magic(const std::vector<unsigned char>& bytes) {

@@ -10,7 +10,12 @@ constexpr std::size_t kMaxShownUriChars = 80;
 
 std::string shown(const std::string& uri) {
   std::string text = printable(uri);
-  if (text.size() > kMaxShownUriChars) text = text.substr(0, kMaxShownUriChars - 3) + "...";
+  if (text.size() > kMaxShownUriChars) {
+    // Cut between characters, never inside one's UTF-8 bytes.
+    std::size_t cut = kMaxShownUriChars - 3;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0u) == 0x80u) --cut;
+    text = text.substr(0, cut) + "...";
+  }
   return text;
 }
 

@@ -43,7 +43,7 @@ class ScanHandler final : public nlohmann::json_sax<json> {
     std::string detail = error.what();
     const std::size_t close = detail.find("] ");
     if (!detail.empty() && detail.front() == '[' && close != std::string::npos) detail.erase(0, close + 2);
-    fail(printable(detail));
+    fail(printable_text(detail));
   }
 
  private:

@@ -10,21 +10,17 @@
 #include <string>
 #include <string_view>
 
+#include "core/printable_text.h"
 #include "soundpaint/result.h"
 
 namespace sp::scene_detail {
 
 [[noreturn]] inline void fail(std::string message) { throw Exception(ErrorCode::InvalidScene, std::move(message)); }
 
-// Names come from the file; control characters would break the promise that
-// an error is one line.
-inline std::string printable(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  return out;
-}
+// Names come from the file and are shown between double quotes: escaped
+// as every name is (core/printable_text.h), so that an error stays one line
+// and a level cannot drive the terminal through it.
+inline std::string printable(std::string_view text) { return printable_text(text, TextQuoting::DoubleQuoted); }
 
 // `node 3 "Lamp"`, or `node 3` for an unnamed node: names in glTF are
 // optional and not unique, so the index is what locates the node.

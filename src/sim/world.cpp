@@ -9,6 +9,7 @@
 #include "config/build_features.h"
 #include "core/finite.h"
 #include "core/glm_interop.h"
+#include "core/printable_text.h"
 #include "display/display_checks.h"
 #include "sim/source_checks.h"
 #include "sim/source_display.h"
@@ -20,7 +21,7 @@ namespace sp {
 namespace {
 
 void check_scene(const Scene& scene) {
-  const std::string name = scene.path.empty() ? std::string("scene") : scene.path.string();
+  const std::string name = scene.path.empty() ? std::string("scene") : printable_text(scene.path.string());
   auto fail = [&](const std::string& what) { throw Exception(ErrorCode::InvalidScene, name + ": " + what); };
   if (scene.triangle_count() == 0) fail("no triangles");
   if (scene.vertices.size() != 3 * scene.triangle_count())
@@ -84,9 +85,9 @@ void check_config(const Config& c) {
     fail("max_indicators must be in [1, " + std::to_string(kMaxIndicatorsLimit) + "]");
   for (const auto& [name, layer] : c.layers) {
     if (!(layer.reflect_probability >= 0.0f && layer.reflect_probability <= 1.0f))
-      fail("layers." + name + ".reflect_probability must be in [0, 1]");
+      fail("layers." + printable_text(name) + ".reflect_probability must be in [0, 1]");
     if (!(layer.attenuation >= 0.0f) || !std::isfinite(layer.attenuation))
-      fail("layers." + name + ".attenuation must be finite and >= 0");
+      fail("layers." + printable_text(name) + ".attenuation must be finite and >= 0");
   }
   if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
   if (c.cpu_traversal == CpuTraversal::Embree && !embree_available())

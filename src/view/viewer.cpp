@@ -17,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/printable_text.h"
 #include "draw/image_barrier.h"
 #include "draw/rendering.h"
 #include "draw/scene_pass.h"
@@ -223,7 +224,7 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, Wo
                                      swapchain_->image_count(), swapchain_->views(), extent);
   panel_->set_visible(options_.panel);
   stats_.device = context_->description();
-  if (watch_) std::fprintf(stderr, "view: watching %s for changes\n", watch_->path().c_str());
+  if (watch_) std::fprintf(stderr, "view: watching %s for changes\n", printable_text(watch_->path().string()).c_str());
   last_cursor_ = window_.cursor();
 }
 
@@ -243,7 +244,7 @@ void Viewer::check_config() {
   std::optional<Result<Config>> found = watch_->poll();
   if (!found) return;
   if (!*found) {
-    const std::string line = found->error().message + " (keeping the running config)";
+    const std::string line = printable_text(found->error().message + " (keeping the running config)");
     std::fprintf(stderr, "view: %s\n", line.c_str());
     stats_.notice = line;
     return;
@@ -274,10 +275,12 @@ void Viewer::apply_change() {
     session_.config = std::move(wanted.config);
     session_.backend = wanted.backend;
     stats_.notice.clear();
-    if (wanted.reload) std::fprintf(stderr, "view: reloaded %s\n", watch_->path().c_str());
+    if (wanted.reload) std::fprintf(stderr, "view: reloaded %s\n", printable_text(watch_->path().string()).c_str());
   } catch (const std::exception& e) {
-    const std::string line = wanted.reload ? watch_->path().string() + ": " + e.what() + " (keeping the running config)"
-                                           : std::string(e.what()) + " (keeping the running settings)";
+    // Messages quote names from the files: escaped before the terminal or the panel shows them.
+    const std::string line =
+        printable_text(wanted.reload ? watch_->path().string() + ": " + e.what() + " (keeping the running config)"
+                                     : std::string(e.what()) + " (keeping the running settings)");
     std::fprintf(stderr, "view: %s\n", line.c_str());
     stats_.notice = line;
   }
@@ -568,7 +571,7 @@ void Viewer::run() {
     if (actions.diffraction_changed) change().config.diffraction.enabled = panel_state_.diffraction;
     if (actions.display_changed) {
       auto applied = visualizer.set_display(panel_state_.display);
-      if (!applied) std::fprintf(stderr, "view: %s\n", applied.error().message.c_str());
+      if (!applied) std::fprintf(stderr, "view: %s\n", printable_text(applied.error().message).c_str());
     }
 
     const bool last = options_.frames > 0 && frame_ + 1 == options_.frames;
