@@ -722,6 +722,49 @@ TEST(CapiInstances, MovedDoorCatchesTheRaysAtItsNewPlace) {
   EXPECT_EQ(sp_simulation_destroy(sim), SP_OK);
 }
 
+// Scaled by FLT_MAX (finite) the door's corners land on +-FLT_MAX and inf,
+// which the BVH refit refuses: that used to stop the simulation for good at
+// the next step. Now the call is refused, naming the instance and why, and
+// the steps go on with the door where it was.
+TEST(CapiInstances, ExtremeTransformIsRefusedAndTheSimulationGoesOn) {
+  const std::uint32_t instances[] = {0, 0};
+  const char* const names[] = {"door"};
+  sp_scene* scene = nullptr;
+  ASSERT_EQ(
+      sp_scene_create_with_instances(kQuad.data(), 2, kQuadLayers.data(), kLayerNames, 1, instances, names, 1, &scene),
+      SP_OK)
+      << last_error();
+  sp_simulation* sim = nullptr;
+  ASSERT_EQ(sp_simulation_create(scene, kQuadConfig, SP_BACKEND_CPU, &sim), SP_OK) << last_error();
+  EXPECT_EQ(sp_scene_destroy(scene), SP_OK);
+  sp_sound_scene* sound = nullptr;
+  ASSERT_EQ(sp_simulation_scene(sim, &sound), SP_OK);
+  const float push[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1};  // to z = 2
+  ASSERT_EQ(sp_sound_scene_set_instance_transform(sound, 0, push), SP_OK) << last_error();
+  ASSERT_EQ(sp_simulation_step(sim), SP_OK) << last_error();
+
+  const float m = std::numeric_limits<float>::max();
+  const float huge[16] = {m, 0, 0, 0, 0, m, 0, 0, 0, 0, m, 0, 0, 0, 0, 1};
+  EXPECT_EQ(sp_sound_scene_set_instance_transform(sound, 0, huge), SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("instance 0 (\"door\")"), std::string::npos) << last_error();
+  EXPECT_NE(last_error().find("previous transform stays"), std::string::npos) << last_error();
+  const float far[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1e12f, 1};
+  EXPECT_EQ(sp_sound_scene_set_instance_transform(sound, 0, far), SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("coordinate bound"), std::string::npos) << last_error();
+
+  for (int step = 1; step <= 2; ++step) {
+    ASSERT_EQ(sp_simulation_step(sim), SP_OK) << last_error();
+    std::size_t of_step = 0;
+    for (const sp_indicator& ind : live_indicators(sim)) {
+      if (ind.step != std::uint32_t(step)) continue;
+      ++of_step;
+      EXPECT_NEAR(ind.position[2], 2.0f, 1e-4f);  // the door stayed pushed
+    }
+    EXPECT_GT(of_step, 0u);
+  }
+  EXPECT_EQ(sp_simulation_destroy(sim), SP_OK);
+}
+
 TEST(CapiInstances, CreateChecksInstanceIdsAndNames) {
   const char* const names[] = {"door"};
   sp_scene* scene = nullptr;

@@ -1,8 +1,14 @@
 // SoundScene's bookkeeping and argument checks, without a backend: ids and
 // slots, capacity, play windows and one-shots as the step plan sees them,
-// and every misuse an engine binding could make.
+// changes queued for the next step (from another thread too), moving parts
+// placed out of the BVH's reach, and every misuse an engine binding could
+// make.
+#include <atomic>
+#include <cfloat>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -142,6 +148,124 @@ TEST(SoundScene, InstanceTransformsMoveOnlyTheirTrianglesAtTheNextUpdate) {
   EXPECT_EQ(moved, 12u);
   EXPECT_TRUE(detail::SoundSceneBackend::update_geometry(scene).triangles.empty());  // nothing pending
 }
+
+// FLT_MAX is finite, but a door scaled by it has vertices at FLT_MAX and
+// +-inf, which the refit refuses (and the step with it, for good): checked at the call, the transform is
+// refused with the reason, nothing is queued, and the steps go on from the
+// previous transform.
+TEST(SoundScene, ExtremeInstanceTransformIsRefusedAndThePreviousOneStays) {
+  SoundScene scene(room_world(0, true));
+  ASSERT_TRUE(scene.set_instance_transform(0, glm::translate(glm::mat4(1.0f), {0, 5, 0})).ok());
+  (void)detail::SoundSceneBackend::update_geometry(scene);
+  ASSERT_FLOAT_EQ(scene.world().geometry->bvh.nodes[0].bmax.y, 7.0f);
+
+  const glm::mat4 huge_scale = glm::scale(glm::mat4(1.0f), glm::vec3(FLT_MAX));
+  Result<bool> refused = scene.set_instance_transform(0, huge_scale);
+  expect_invalid(refused, "instance 0 (\"door\")");
+  expect_invalid(refused, "coordinate bound");  // the door's first vertex, x = 1, lands on FLT_MAX
+  expect_invalid(refused, "previous transform stays");
+  expect_invalid(scene.set_instance_transform(0, glm::translate(glm::mat4(1.0f), glm::vec3(FLT_MAX)) * huge_scale),
+                 "not finite");
+  // Finite everywhere, but 1e11 m away: beyond the bound (1e10 m).
+  expect_invalid(scene.set_instance_transform(0, glm::translate(glm::mat4(1.0f), {0, 1e11f, 0})), "coordinate bound");
+  EXPECT_FALSE(scene.geometry_pending());
+  EXPECT_TRUE(detail::SoundSceneBackend::update_geometry(scene).triangles.empty());
+  EXPECT_FLOAT_EQ(scene.world().geometry->bvh.nodes[0].bmax.y, 7.0f);
+
+  // Large but within the bound is placed: the door's top (2 m) at 2e9 m.
+  ASSERT_TRUE(scene.set_instance_transform(0, glm::scale(glm::mat4(1.0f), glm::vec3(1e9f))).ok());
+  EXPECT_FALSE(detail::SoundSceneBackend::update_geometry(scene).triangles.empty());
+  EXPECT_FLOAT_EQ(scene.world().geometry->bvh.nodes[0].bmax.y, 2e9f);
+}
+
+// What a call changes waits in the queue: the ids, has_source and
+// listener() answer for it at once, the World the steps read only from the
+// next step on, and in the order the calls were made.
+TEST(SoundScene, ChangesWaitForTheNextStepAndApplyInCallOrder) {
+  SoundScene scene(room_world(2));
+  const std::uint32_t added = scene.add_source(test::source_at({1, 1, 1})).value();
+  EXPECT_EQ(added, 2u);
+  EXPECT_TRUE(scene.has_source(added));
+  EXPECT_EQ(scene.world().sources.size(), 2u);  // not yet
+  ASSERT_TRUE(scene.set_listener({0, 2, 0}).ok());
+  EXPECT_EQ(scene.listener(), Vec3(0, 2, 0));
+  EXPECT_EQ(scene.world().listener, Vec3(0, 1.5f, 0));  // not yet
+  // Removing frees the id at once; the add that takes it and the move that
+  // follows apply after the removal.
+  ASSERT_TRUE(scene.remove_source(0).ok());
+  EXPECT_FALSE(scene.has_source(0));
+  EXPECT_EQ(scene.add_source(test::source_at({-1, 1, -1})).value(), 0u);
+  ASSERT_TRUE(scene.move_source(0, {-2, 1, -2}).ok());
+
+  EXPECT_EQ(planned_ids(scene, 0), (std::vector<std::uint32_t>{0, 1, 2}));
+  ASSERT_EQ(scene.world().sources.size(), 3u);
+  EXPECT_EQ(scene.world().sources[0].position, Vec3(-2, 1, -2));
+  EXPECT_EQ(scene.world().sources[2].position, Vec3(1, 1, 1));
+  EXPECT_EQ(scene.world().listener, Vec3(0, 2, 0));
+}
+
+// An audio thread plays, emits, moves sources and the listener and swings
+// the door while this thread plans and refits step after step. Run under
+// ThreadSanitizer too (scripts/test.sh): any unsynchronised access fails.
+TEST(SoundScene, AnotherThreadChangesTheSceneWhileStepsRun) {
+  SoundScene scene(room_world(1, true));
+  const double dt = scene.world().config.dt;
+  constexpr int kCalls = 300;
+  constexpr int kSteps = 300;
+  std::atomic<int> steps_done{0};
+  std::vector<std::uint32_t> emitted;
+  int errors = 0;
+  std::thread audio([&] {
+    for (int i = 0; i < kCalls; ++i) {
+      while (steps_done.load() < i / 2) std::this_thread::yield();  // keeps pace; the steps always get there
+      const float angle = 0.01f * static_cast<float>(i);
+      errors += scene.set_listener({0, 1.5f, angle}).ok() ? 0 : 1;
+      errors += scene.move_source(0, {angle, 1, 0}).ok() ? 0 : 1;
+      errors += scene.play(0, dt).ok() ? 0 : 1;
+      errors += scene.set_instance_transform(0, glm::rotate(glm::mat4(1.0f), angle, {0, 1, 0})).ok() ? 0 : 1;
+      Result<std::uint32_t> id = scene.emit(test::source_at({0, 1, 0.5f}), 2 * dt - 1e-9);
+      if (id) emitted.push_back(*id);
+      errors += id ? 0 : 1;
+      errors += scene.has_source(0) ? 0 : 1;
+    }
+  });
+  std::set<std::uint32_t> planned;
+  for (int step = 0; step < kSteps; ++step) {
+    (void)detail::SoundSceneBackend::update_geometry(scene);
+    for (std::uint32_t id : planned_ids(scene, std::uint64_t(step))) planned.insert(id);
+    steps_done.fetch_add(1);
+  }
+  audio.join();
+  for (int step = kSteps; step < kSteps + 3; ++step)
+    for (std::uint32_t id : planned_ids(scene, std::uint64_t(step))) planned.insert(id);
+
+  EXPECT_EQ(errors, 0);
+  ASSERT_EQ(emitted.size(), std::size_t{kCalls});
+  // Every one-shot was planned (each is alone in no step, but every
+  // playing source within reach is planned) and has ended since.
+  for (std::uint32_t id : std::set<std::uint32_t>(emitted.begin(), emitted.end())) {
+    EXPECT_TRUE(planned.contains(id)) << "one-shot " << id << " never planned";
+    EXPECT_FALSE(scene.has_source(id)) << "one-shot " << id << " still live";
+  }
+  EXPECT_TRUE(scene.has_source(0));
+  EXPECT_EQ(scene.world().sources[0].position, Vec3(0.01f * (kCalls - 1), 1, 0));
+}
+
+#ifndef NDEBUG
+// Debug builds only (the check is compiled out with NDEBUG): world() from
+// a thread that does not step aborts with a message saying so.
+TEST(SoundSceneDeathTest, WorldFromAnotherThreadAbortsInDebugBuilds) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_DEATH(
+      {
+        SoundScene scene(room_world(1));
+        (void)planned_ids(scene, 0);
+        std::thread other([&] { (void)scene.world(); });
+        other.join();
+      },
+      "world\\(\\) called on a thread other than the one that steps");
+}
+#endif
 
 TEST(SoundScene, SceneInstanceTablesAreChecked) {
   Scene scene = test::closed_room();

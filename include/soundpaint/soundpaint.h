@@ -25,10 +25,30 @@
  *   SP_ERROR_INVALID_ARGUMENT. Every float and double argument, and every
  *   field of a struct argument that the call uses, is checked finite.
  * - Thread-safety: different handles may be used from different threads at
- *   the same time. One sp_simulation (with its sp_sound_scene) must be used
- *   by one thread at a time (calls on it are not synchronised). An sp_scene
- *   is read-only after creation and may be shared by threads creating
- *   simulations from it.
+ *   the same time. An sp_scene is read-only after creation and may be shared
+ *   by threads creating simulations from it. A game drives one simulation
+ *   (or visualizer) from two threads, and may:
+ *   - Render thread, one call at a time: sp_simulation_step,
+ *     sp_simulation_live_indicators, sp_simulation_stats and
+ *     sp_simulation_destroy (and every sp_visualizer_* call but
+ *     sp_visualizer_scene and sp_visualizer_backend, soundpaint_vulkan.h).
+ *     A call made while another thread is inside one of these on the same
+ *     handle is refused with SP_ERROR_INVALID_ARGUMENT ("another thread is
+ *     inside a call on this handle"), in every build; calls that do not
+ *     overlap may come from different threads.
+ *   - Any thread, the audio thread included, at the same time as the above
+ *     and as each other: every sp_sound_scene_* function,
+ *     sp_simulation_set_listener, sp_simulation_play,
+ *     sp_simulation_source_count, sp_simulation_scene and
+ *     sp_visualizer_scene. The changes are checked at the call (errors as
+ *     documented) and queued; the next step applies them, in call order,
+ *     before it plans. They wait at most for another such call's turn at a
+ *     short lock, never for a step; they may allocate. Ids are decided at
+ *     the call (sp_sound_scene_emit's id is usable at once).
+ *   Destroying a handle while another thread is inside any call on it (or
+ *   on its sp_sound_scene) is undefined behaviour: stop the audio thread's
+ *   calls first. Last-error messages are per thread, so each thread reads
+ *   its own.
  * - Sound sources come from the scene (glTF nodes) and the JSON config
  *   ("sources") given at creation, and can be added, changed, moved, played,
  *   emitted once and removed at run time through the owner's sp_sound_scene
@@ -260,27 +280,33 @@ sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* c
                                             const sp_simulation_options* options, sp_simulation** out) SP_NOEXCEPT;
 
 /* Destroys a simulation and its resources; its sp_sound_scene stops being
- * live. NULL is a no-op (SP_OK). Not while another thread uses it.
- * Errors: SP_ERROR_INVALID_ARGUMENT when `simulation` is not live. */
+ * live. NULL is a no-op (SP_OK). Render thread; not while another thread is
+ * inside any call on it or its scene (undefined behaviour; overlapping a
+ * step or read is detected and refused).
+ * Errors: SP_ERROR_INVALID_ARGUMENT when `simulation` is not live, or when
+ * another thread is inside sp_simulation_step, _live_indicators or _stats. */
 sp_result sp_simulation_destroy(sp_simulation* simulation) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the simulation's sound scene, borrowed: the same
- * pointer on every call, live until sp_simulation_destroy. Use it from the
- * thread that steps the simulation. */
+ * pointer on every call, live until sp_simulation_destroy. Any thread; its
+ * functions too (see Thread-safety above). */
 sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) SP_NOEXCEPT;
 
 /* Shorthand for sp_sound_scene_set_listener on the simulation's scene.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, or a
+ * Any thread. Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, or a
  * non-finite coordinate. */
 sp_result sp_simulation_set_listener(sp_simulation* simulation, float x, float y, float z) SP_NOEXCEPT;
 
 /* Shorthand for sp_sound_scene_play on the simulation's scene.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, an unknown
+ * Any thread. Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live, an unknown
  * or removed id, or a negative or non-finite duration. */
 sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, double duration_seconds) SP_NOEXCEPT;
 
-/* Runs the next step (config "dt" seconds of simulated time).
- * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live); device failures
+/* Runs the next step (config "dt" seconds of simulated time): first the
+ * sound-scene changes queued since the last step, in call order, then the
+ * rays. Render thread (see Thread-safety above).
+ * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live; another thread
+ * inside a render-thread call on it); device failures
  * (SP_ERROR_VULKAN) on the GPU backend; SP_ERROR_LIMIT_EXCEEDED when the
  * CPU backend runs out of memory, after which the simulation has stopped:
  * every later step returns the same error (indicators and stats still
@@ -288,31 +314,36 @@ sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, doub
 sp_result sp_simulation_step(sp_simulation* simulation) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the number of source slots: source ids are
- * 0 .. count - 1 (scene's, then config's, then added ones); a slot whose
- * source was removed (or whose one-shot ended) stays counted until an added
- * source reuses it (sp_sound_scene_has_source tells which are live). */
+ * 0 .. count - 1 (scene's, then config's, then added ones, counted from the
+ * call that added them); a slot whose source was removed (or whose one-shot
+ * ended) stays counted until an added source reuses it
+ * (sp_sound_scene_has_source tells which are live). Any thread. */
 sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* out) SP_NOEXCEPT;
 
 /* The indicators still visible (younger than indicator_lifetime), oldest
  * first. *count (non-NULL) receives how many exist; min(*count, capacity)
  * are written to out. out may be NULL only when capacity == 0 (size query).
- * Calling twice between steps gives the same list.
+ * Calling twice between steps gives the same list. Render thread.
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not-live simulation, NULL
- * count, NULL out with capacity > 0); SP_ERROR_VULKAN on a GPU read-back
- * failure. */
+ * count, NULL out with capacity > 0, another thread inside a render-thread
+ * call on it); SP_ERROR_VULKAN on a GPU read-back failure. */
 sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator* out, uint32_t capacity,
                                         uint32_t* count) SP_NOEXCEPT;
 
-/* *out (non-NULL) receives the totals over every step run so far.
- * Errors: SP_ERROR_INVALID_ARGUMENT for NULL or a handle not live;
+/* *out (non-NULL) receives the totals over every step run so far. Render
+ * thread. Errors: SP_ERROR_INVALID_ARGUMENT for NULL, a handle not live or
+ * another thread inside a render-thread call on it;
  * SP_ERROR_VULKAN on a GPU read-back failure. */
 sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) SP_NOEXCEPT;
 
 /* --- Sound scene: run-time changes, through a simulation's or a
- * visualizer's sp_sound_scene. Each applies from the next step on; on error
- * nothing changes. Every function fails with SP_ERROR_INVALID_ARGUMENT for a
- * NULL scene or one whose owner was destroyed. Not thread-safe: call from
- * the thread that drives the owner. */
+ * visualizer's sp_sound_scene. Each is checked at the call and applies from
+ * the next step on; on error nothing changes. Every function fails with
+ * SP_ERROR_INVALID_ARGUMENT for a NULL scene or one whose owner was
+ * destroyed. Any thread, while the render thread steps (the audio thread's
+ * "this sound just started" included): see Thread-safety above. Queries
+ * (has_source, instance_count, source_capacity) answer as the queued
+ * changes will leave the scene. */
 
 /* Moves the listener to (x, y, z) metres (finite). */
 sp_result sp_sound_scene_set_listener(sp_sound_scene* scene, float x, float y, float z) SP_NOEXCEPT;
@@ -358,7 +389,13 @@ sp_result sp_sound_scene_emit(sp_sound_scene* scene, const sp_source_desc* desc,
  * transform column_major_4x4 (non-NULL, 16 finite floats, column-major as
  * in glm, GLSL and the glTF spec) applied to its rest pose: a door swings
  * by a rotation about its hinge. Replaces the previous transform.
- * Errors: SP_ERROR_INVALID_ARGUMENT (instance out of range, non-finite). */
+ * Every vertex of the part it would place must be finite and within
+ * 1e10 m of the origin on each axis (sp::kMaxCoordinate, simulation.h):
+ * the BVH computes in float. A transform that breaks this (a finite but
+ * huge scale, a translation of 1e12 m) is refused, naming the instance and
+ * the vertex; the previous transform stays and the steps go on.
+ * Errors: SP_ERROR_INVALID_ARGUMENT (instance out of range, non-finite
+ * element, a vertex placed out of bounds). */
 sp_result sp_sound_scene_set_instance_transform(sp_sound_scene* scene, uint32_t instance,
                                                 const float column_major_4x4[16]) SP_NOEXCEPT;
 

@@ -94,6 +94,13 @@ void require_live(HandleKind kind, const void* handle, const char* function, con
     throw_invalid(function, std::string(what) + " handle is not live (destroyed or never created)");
 }
 
+void OneThreadAtATime::claim(const char* function) const {
+  if (busy_.exchange(true, std::memory_order_acquire))
+    throw_invalid(function,
+                  "another thread is inside a call on this handle; stepping, reading indicators and stats, "
+                  "recording and destroying must come from one thread at a time (soundpaint.h, Thread-safety)");
+}
+
 BackendChoice backend_choice(sp_backend backend, const char* function) {
   switch (backend) {
     case SP_BACKEND_CPU:

@@ -3,6 +3,7 @@
 // sp_result plus the thread's last error message.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <new>
 #include <string>
@@ -14,6 +15,42 @@
 #include "soundpaint/simulation.h"
 #include "soundpaint/soundpaint.h"
 #include "sp_types.h"
+
+namespace sp::capi {
+
+// The calls on one simulation or visualizer that must come from one thread
+// at a time (stepping, reading indicators and stats, recording, destroying):
+// a thread that enters while another is inside gets an InvalidArgument
+// error naming both rules instead of a data race. Nobody waits: it is a
+// detector, not a lock. Entering and leaving order the calls as a mutex
+// would, so a host may move these calls from thread to thread between them.
+class OneThreadAtATime {
+ public:
+  // Leaves on destruction.
+  class Scope {
+   public:
+    explicit Scope(const OneThreadAtATime& owner) : owner_(owner) {}
+    ~Scope() { owner_.busy_.store(false, std::memory_order_release); }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    const OneThreadAtATime& owner_;
+  };
+
+  // Throws InvalidArgument (naming `function`) when another thread is inside.
+  [[nodiscard]] Scope enter(const char* function) const {
+    claim(function);
+    return Scope(*this);
+  }
+  // Enters without leaving: for destroy, after which there is nothing to leave.
+  void claim(const char* function) const;
+
+ private:
+  mutable std::atomic<bool> busy_{false};
+};
+
+}  // namespace sp::capi
 
 struct sp_scene {
   sp::Scene scene;
@@ -28,6 +65,7 @@ struct sp_sound_scene {
 struct sp_simulation {
   std::unique_ptr<sp::Simulator> simulator;
   sp_sound_scene sound_scene;
+  sp::capi::OneThreadAtATime stepping;  // step, live_indicators, stats, destroy
 };
 
 namespace sp::capi {

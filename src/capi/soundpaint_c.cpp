@@ -237,8 +237,13 @@ sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* c
 }
 
 sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
-  return guarded(
-      [&] { sp::capi::destroy_handle(HandleKind::Simulation, simulation, "sp_simulation_destroy", "simulation"); });
+  return guarded([&] {
+    const char* fn = "sp_simulation_destroy";
+    // Not while this handle's other thread steps or reads it (a call on its
+    // sound scene meanwhile is the host's to prevent: soundpaint.h).
+    if (simulation != nullptr && sp::capi::is_live(HandleKind::Simulation, simulation)) simulation->stepping.claim(fn);
+    sp::capi::destroy_handle(HandleKind::Simulation, simulation, fn, "simulation");
+  });
 }
 
 sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) noexcept {
@@ -263,18 +268,18 @@ sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, doub
   return guarded([&] {
     const char* fn = "sp_simulation_play";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
-    const std::size_t count = simulation->simulator->world().sources.size();
-    if (source_id >= count)
-      throw_invalid(fn, "unknown source id " + std::to_string(source_id) + " (there are " + std::to_string(count) +
-                            " sources)");
     require(std::isfinite(duration_seconds) && duration_seconds >= 0.0, fn, "duration_seconds must be finite and >= 0");
-    unwrap(simulation->simulator->play(source_id, duration_seconds));  // also rejects a removed source
+    // The scene checks the id (unknown, removed) from any thread; world()
+    // belongs to the thread that steps.
+    unwrap(simulation->simulator->play(source_id, duration_seconds));
   });
 }
 
 sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
   return guarded([&] {
-    require_live(HandleKind::Simulation, simulation, "sp_simulation_step", "simulation");
+    const char* fn = "sp_simulation_step";
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn);
     unwrap(simulation->simulator->step());
   });
 }
@@ -284,7 +289,7 @@ sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* 
     const char* fn = "sp_simulation_source_count";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
     require(out != nullptr, fn, "out is NULL");
-    *out = static_cast<uint32_t>(simulation->simulator->world().sources.size());
+    *out = simulation->simulator->scene().source_slot_count();  // any thread: not world()
   });
 }
 
@@ -293,6 +298,7 @@ sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator*
   return guarded([&] {
     const char* fn = "sp_simulation_live_indicators";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn);
     require(count != nullptr, fn, "count is NULL");
     require(out != nullptr || capacity == 0, fn, "out is NULL but capacity > 0");
     const std::vector<sp::Indicator> live = unwrap(simulation->simulator->live_indicators());
@@ -308,6 +314,7 @@ sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept
   return guarded([&] {
     const char* fn = "sp_simulation_stats";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn);
     require(out != nullptr, fn, "out is NULL");
     const sp::SimulationStats stats = unwrap(simulation->simulator->stats());
     sp_stats result{};

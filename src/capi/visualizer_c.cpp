@@ -19,6 +19,7 @@
 struct sp_visualizer {
   std::unique_ptr<sp::Visualizer> visualizer;
   sp_sound_scene sound_scene;
+  sp::capi::OneThreadAtATime rendering;  // every call but backend, scene and create
 };
 
 namespace {
@@ -64,6 +65,15 @@ sp::Visualizer& visualizer_of(const sp_visualizer* visualizer, const char* fn) {
   return *visualizer->visualizer;
 }
 
+// A live visualizer for a call of the render thread's (soundpaint.h,
+// Thread-safety), entered for as long as the returned scope lives.
+struct RenderCall {
+  RenderCall(const sp_visualizer* visualizer, const char* fn)
+      : v(visualizer_of(visualizer, fn)), one_thread(visualizer->rendering.enter(fn)) {}
+  sp::Visualizer& v;
+  sp::capi::OneThreadAtATime::Scope one_thread;
+};
+
 }  // namespace
 
 extern "C" {
@@ -98,8 +108,11 @@ sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target*
 }
 
 sp_result sp_visualizer_destroy(sp_visualizer* visualizer) noexcept {
-  return guarded(
-      [&] { sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, "sp_visualizer_destroy", "visualizer"); });
+  return guarded([&] {
+    const char* fn = "sp_visualizer_destroy";
+    if (visualizer != nullptr && sp::capi::is_live(HandleKind::Visualizer, visualizer)) visualizer->rendering.claim(fn);
+    sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, fn, "visualizer");
+  });
 }
 
 sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) noexcept {
@@ -124,7 +137,8 @@ sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBu
                                           uint32_t* out_steps) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_record_simulation";
-    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    sp::Visualizer& v = call.v;
     require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
     require(std::isfinite(dt_seconds) && dt_seconds >= 0.0, fn, "dt_seconds must be finite and >= 0");
     const std::uint32_t steps = unwrap(v.record_simulation(cmd, dt_seconds));
@@ -136,7 +150,8 @@ sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer c
                                     const float projection[16], const VkRect2D* area) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_record_draw";
-    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    sp::Visualizer& v = call.v;
     require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
     const glm::mat4 view_matrix = to_matrix(view, fn, "view");
     const glm::mat4 projection_matrix = to_matrix(projection, fn, "projection");
@@ -148,7 +163,8 @@ sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffe
                                        const float projection[16], const sp_draw_options* options) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_record_draw_ex";
-    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    sp::Visualizer& v = call.v;
     require(cmd != VK_NULL_HANDLE, fn, "cmd is VK_NULL_HANDLE");
     const glm::mat4 view_matrix = to_matrix(view, fn, "view");
     const glm::mat4 projection_matrix = to_matrix(projection, fn, "projection");
@@ -160,7 +176,8 @@ sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffe
 sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_settings* settings) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_set_display";
-    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    sp::Visualizer& v = call.v;
     require(settings != nullptr, fn, "settings is NULL");
     unwrap(v.set_display(sp::capi::display_settings_from(*settings, fn)));
   });
@@ -169,7 +186,8 @@ sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_
 sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImageView* views, uint32_t count) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_set_scene_depth";
-    sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    sp::Visualizer& v = call.v;
     require(count == 0 || views != nullptr, fn, "views is NULL but count is above 0");
     // Named by index here; the visualizer would only say that one is null.
     for (uint32_t i = 0; i < count; ++i)
@@ -179,13 +197,14 @@ sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImage
 }
 
 sp_result sp_visualizer_wait(sp_visualizer* visualizer) noexcept {
-  return guarded([&] { unwrap(visualizer_of(visualizer, "sp_visualizer_wait").wait_for_simulation()); });
+  return guarded([&] { unwrap(RenderCall(visualizer, "sp_visualizer_wait").v.wait_for_simulation()); });
 }
 
 sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) noexcept {
   return guarded([&] {
     const char* fn = "sp_visualizer_steps_run";
-    const sp::Visualizer& v = visualizer_of(visualizer, fn);
+    RenderCall call(visualizer, fn);
+    const sp::Visualizer& v = call.v;
     require(out != nullptr, fn, "out is NULL");
     *out = v.steps_run();
   });
