@@ -2,7 +2,8 @@
 // must show: spots elongated along the sound's direction, clipped to their
 // surface (no colour past an edge, none under a wall in the next room),
 // categories hidden and capped, opacity and size scaled, arrows for sources
-// out of view; and spots that live out their lifetime at the default budget.
+// out of view; and spots that live out their lifetime at the default budget;
+// and display lists at their bounds over thousands of sources.
 // Synthetic indicators go through the host-side ring (HostIndicators);
 // simulated ones through both backends. Runs on the shared validation-
 // enabled context; any validation message fails the test.
@@ -14,14 +15,17 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "draw/display_sources.h"
 #include "draw/host_indicators.h"
 #include "draw/renderer.h"
 #include "sim/indicator_ring.h"
+#include "sp_shapes.h"
 #include "sp_types.h"
 #include "support/gpu_environment.h"
 #include "support/render_checks.h"
@@ -528,6 +532,91 @@ TEST_F(Display, ShortLifetimesNeverFlashFasterThanThreeTimesASecond) {
   EXPECT_GT(early, 100u) << "a spot must stay at least 1/3 s";
   EXPECT_GT(late, 0u) << "still fading out at 0.25 s";
   EXPECT_EQ(blob(draw(world, view, one, 22), reddish).pixels, 0u) << "gone after 1/3 s";
+}
+
+// Issue 38: a config that hides many categories over many sources. Each
+// of 10,000 sources has its own category; the display hides 4,096 of them
+// (the most hide_categories may hold) and reshapes 4,096 others (the most
+// shapes may hold). Every source's flags follow its own category.
+constexpr std::uint32_t kManySources = 10000;
+
+// "c<i>", built by appending: GCC 12's -Wrestrict misfires on "c" + std::to_string(i).
+std::string numbered_name(std::size_t i) {
+  std::string name = "c";
+  name += std::to_string(i);
+  return name;
+}
+
+World many_categories_world(const DisplaySettings& display) {
+  Scene scene;
+  test::add_box(scene, {-10, -0.3f, -10}, {10, 0, 10}, "concrete");
+  for (std::uint32_t i = 0; i < kManySources; ++i)
+    scene.sources.push_back(
+        source({0, 1, 0}, i == 0 ? glm::vec3(1.0f, 0.05f, 0.05f) : glm::vec3(0.05f, 0.1f, 1.0f), numbered_name(i)));
+  Config config;
+  config.listener_position = glm::vec3(0, 1, 0);
+  config.indicator_size = 1.0f;
+  config.display = display;
+  return make_world(scene, config).value();
+}
+
+// Hides c0, c2, c4, ... c8190; reshapes c1, c3, ... c8191 to stars.
+DisplaySettings many_categories_display() {
+  DisplaySettings display;
+  for (std::uint32_t i = 0; i < kMaxDisplayCategories; ++i) {
+    display.hide_categories.push_back(numbered_name(2 * i));
+    display.shapes[numbered_name(2 * i + 1)] = Shape::Star;
+  }
+  display.offscreen_arrows = false;
+  return display;
+}
+
+TEST(DisplaySources, ThousandsOfHiddenCategoriesHideTheirSourcesOnly) {
+  const World world = many_categories_world(many_categories_display());
+  const std::vector<shader::DisplaySource> table = draw::make_display_sources(world, world.config.display);
+  ASSERT_EQ(table.size(), kManySources);
+  std::size_t hidden = 0, stars = 0;
+  for (std::uint32_t id = 0; id < kManySources; ++id) {
+    const bool listed = id < 2 * kMaxDisplayCategories;
+    const std::uint32_t flags = table[id].shape_flags;
+    EXPECT_EQ((flags & SP_SOURCE_HIDDEN) != 0, listed && id % 2 == 0) << "source " << id;
+    EXPECT_NE(flags & SP_SOURCE_PRESENT, 0u) << "source " << id;
+    const std::uint32_t shape = flags & ~(SP_SOURCE_HIDDEN | SP_SOURCE_PRESENT);
+    EXPECT_EQ(shape, listed && id % 2 == 1 ? SP_SHAPE_STAR : SP_SHAPE_DISC) << "source " << id;
+    hidden += (flags & SP_SOURCE_HIDDEN) != 0;
+    stars += shape == SP_SHAPE_STAR;
+  }
+  EXPECT_EQ(hidden, kMaxDisplayCategories);
+  EXPECT_EQ(stars, kMaxDisplayCategories);
+}
+
+// Past the limit, make_world refuses the settings, naming the list, as
+// set_display does (the config parser refuses it first: test_config_limits).
+TEST(DisplaySources, MoreHiddenCategoriesThanTheLimitIsAnError) {
+  DisplaySettings display = many_categories_display();
+  display.hide_categories.push_back("one too many");
+  Scene scene;
+  test::add_box(scene, {-10, -0.3f, -10}, {10, 0, 10}, "concrete");
+  Config config;
+  config.listener_position = glm::vec3(0, 1, 0);
+  config.display = display;
+  const Result<World> world = make_world(scene, config);
+  ASSERT_FALSE(world.ok());
+  EXPECT_EQ(world.error().code, ErrorCode::InvalidConfig);
+  EXPECT_EQ(world.error().message, "display.hide_categories has 4097 entries, at most 4096");
+}
+
+// The picture of that world: the hidden source's spot does not show, the
+// shown one's does.
+TEST_F(Display, ThousandsOfHiddenCategoriesAmongThousandsOfSourcesDraw) {
+  const World world = many_categories_world(many_categories_display());
+  const draw::ViewCamera view = camera(world, {0, 6, 0.01f}, {0, 0, 0});
+  // Source 0 (c0, hidden) is red; source 9999 (c9999, not listed) blue.
+  const draw::RgbaImage image = draw(world, view,
+                                     {spot({-1.5f, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f, 0),
+                                      spot({1.5f, 0, 0}, {0, 1, 0}, {0, -1, 0}, 1.0f, kManySources - 1)});
+  EXPECT_EQ(test::count_pixels(image, is_red), 0u) << "c0 is hidden";
+  EXPECT_GT(test::count_pixels(image, is_blue), 100u) << "c9999 is not";
 }
 
 // display never changes the simulation (SPEC 1.5): every field of every

@@ -1,7 +1,8 @@
 // Colours and categories of the display: CIEDE2000 against the published test
 // pairs, the colour-vision simulation, the palettes' distinguishability for
 // normal and colour-blind vision, the halo's contrast on any surface, the
-// names, and the numbering of categories. Expected values are published or
+// names, the numbering of categories, and the bounds on the display's
+// category lists. Expected values are published or
 // derived by hand in the comments, never taken from the code's own output.
 #include <gtest/gtest.h>
 
@@ -19,8 +20,10 @@
 #include "display/categories.h"
 #include "display/color_vision.h"
 #include "display/contrast.h"
+#include "display/display_checks.h"
 #include "display/palette.h"
 #include "soundpaint/display.h"
+#include "soundpaint/result.h"
 
 namespace sp {
 namespace {
@@ -358,6 +361,75 @@ TEST(Categories, ShapeOverridesWinThenBuiltinsThenDisc) {
   EXPECT_EQ(table.shape_of(table.index_of("gunfire"), overrides), Shape::Plus);
   EXPECT_EQ(table.shape_of(table.index_of("explosion"), overrides), Shape::Star);
   EXPECT_EQ(table.shape_of(radio, overrides), Shape::Disc);
+}
+
+// "c<i>", built by appending: GCC 12's -Wrestrict misfires on "c" + std::to_string(i).
+std::string numbered_name(std::size_t i) {
+  std::string name = "c";
+  name += std::to_string(i);
+  return name;
+}
+
+// Numbering many names keeps first-appearance order and finds each again
+// (the table is hashed: 10,000 names is what a world of 10,000 sources with
+// their own categories needs).
+TEST(Categories, ThousandsOfNamesKeepTheirNumbers) {
+  CategoryTable table;
+  for (std::uint32_t i = 0; i < 10000; ++i) ASSERT_EQ(table.index_of(numbered_name(i)), 8u + i);
+  EXPECT_EQ(table.size(), 10008u);
+  for (std::uint32_t i = 0; i < 10000; i += 997) {
+    EXPECT_EQ(table.index_of(numbered_name(i)), 8u + i);
+    EXPECT_EQ(table.name(8u + i), numbered_name(i));
+  }
+  EXPECT_EQ(table.index_of("alarm"), 4u);
+  EXPECT_EQ(table.size(), 10008u);
+  // A copy numbers on by itself.
+  CategoryTable copy = table;
+  EXPECT_EQ(copy.index_of("new"), 10008u);
+  EXPECT_EQ(copy.index_of("c5"), 13u);
+  EXPECT_EQ(table.size(), 10008u);
+}
+
+// --- Display checks (settings made in code: make_world, set_display) ---
+
+std::string check_error(const DisplaySettings& settings) {
+  try {
+    check_display_settings(settings);
+  } catch (const Exception& e) {
+    EXPECT_EQ(e.error().code, ErrorCode::InvalidConfig);
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<std::string> numbered_names(std::size_t count) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < count; ++i) names.push_back(numbered_name(i));
+  return names;
+}
+
+TEST(DisplayChecks, CategoryListsHoldAtMostTheirLimit) {
+  DisplaySettings settings;
+  settings.hide_categories = numbered_names(kMaxDisplayCategories);
+  for (const std::string& name : numbered_names(kMaxDisplayCategories)) settings.shapes[name] = Shape::Star;
+  EXPECT_EQ(check_error(settings), "");
+  settings.hide_categories.push_back("one more");
+  EXPECT_EQ(check_error(settings), "display.hide_categories has 4097 entries, at most 4096");
+  settings.hide_categories.pop_back();
+  settings.shapes["one more"] = Shape::Ring;
+  EXPECT_EQ(check_error(settings), "display.shapes has 4097 entries, at most 4096");
+}
+
+TEST(DisplayChecks, CategoryNamesHaveAtMost256Bytes) {
+  DisplaySettings settings;
+  settings.hide_categories = {"footsteps", std::string(256, 'x')};
+  settings.shapes[std::string(256, 'y')] = Shape::Star;
+  EXPECT_EQ(check_error(settings), "");
+  settings.hide_categories.push_back(std::string(257, 'x'));
+  EXPECT_EQ(check_error(settings), "display.hide_categories[2] is 257 bytes long, at most 256");
+  settings.hide_categories.pop_back();
+  settings.shapes[std::string(100000, 'z')] = Shape::Star;
+  EXPECT_EQ(check_error(settings), "display.shapes has a category name 100000 bytes long, at most 256");
 }
 
 }  // namespace

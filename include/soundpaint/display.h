@@ -7,6 +7,7 @@
 // which guideline each setting answers.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -56,9 +57,23 @@ struct BuiltinCategory {
 };
 std::span<const BuiltinCategory> builtin_categories();
 
+// Bounds on the display's category lists. Configs come from players
+// (README "Security"), and a frame's display work grows with these lists
+// and the sources together; bounded, a list that asks for too much is an
+// error that names its key rather than a slow frame. Real configs hide and
+// reshape a handful of categories, with names of a word or two.
+//
+// At most this many entries in hide_categories, and as many in shapes.
+inline constexpr std::size_t kMaxDisplayCategories = 4096;
+// At most this many bytes (UTF-8) in each category name either list gives.
+inline constexpr std::size_t kMaxCategoryNameBytes = 256;
+
 // The config's `display` object (contract: README.md, "Cues a player can read";
 // docs/accessibility.md, section 4). Units: size_scale and opacity_scale
-// multiply; min_opacity is an opacity in [0, 1].
+// multiply; min_opacity is an opacity in [0, 1]. shapes and hide_categories
+// hold at most kMaxDisplayCategories entries each, of names at most
+// kMaxCategoryNameBytes long: make_world, set_display and the config parser
+// reject more (InvalidConfig, naming the key).
 struct DisplaySettings {
   Palette palette = Palette::OkabeIto;
   std::map<std::string, Shape> shapes;            // category -> shape, over the built-in map

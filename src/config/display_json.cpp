@@ -1,6 +1,7 @@
 #include "config/display_json.h"
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -25,11 +26,26 @@ Palette read_palette(const nlohmann::json& value, const JsonPath& at) {
   at.fail(R"(must be "okabe-ito", "high-contrast" or "single-hue")", value);
 }
 
+// The lists' bounds (include/soundpaint/display.h), checked before an entry
+// is read: the error names the list, and a name too long to print is not
+// printed.
+void check_list_length(std::size_t size, const JsonPath& at, const char* entries) {
+  if (size > kMaxDisplayCategories)
+    at.fail("must hold at most " + std::to_string(kMaxDisplayCategories) + " " + entries + ", has " +
+            std::to_string(size));
+}
+
+std::string name_limit() { return "at most " + std::to_string(kMaxCategoryNameBytes) + " bytes long"; }
+
 std::map<std::string, Shape> read_shapes(const nlohmann::json& value, const JsonPath& at) {
   std::map<std::string, Shape> shapes;
-  for (const auto& [category, shape] : expect_any_object(value, at)) {
-    const JsonPath shape_at = at.key(category);
+  const auto& object = expect_any_object(value, at);
+  check_list_length(object.size(), at, "categories");
+  for (const auto& [category, shape] : object) {
     if (category.empty()) at.fail("category names must not be empty");
+    if (category.size() > kMaxCategoryNameBytes)
+      at.fail("category names must be " + name_limit() + ", one is " + std::to_string(category.size()));
+    const JsonPath shape_at = at.key(category);
     const auto found = shape.is_string() ? shape_from_name(shape.get_ref<const std::string&>()) : std::nullopt;
     if (!found) shape_at.fail("must be one of " + shape_names(), shape);
     shapes[category] = *found;
@@ -39,8 +55,14 @@ std::map<std::string, Shape> read_shapes(const nlohmann::json& value, const Json
 
 std::vector<std::string> read_categories(const nlohmann::json& value, const JsonPath& at) {
   if (!value.is_array()) at.fail("must be an array of category names", value);
+  check_list_length(value.size(), at, "category names");
   std::vector<std::string> categories;
-  for (std::size_t i = 0; i < value.size(); ++i) categories.push_back(read_string(value[i], at.index(i)));
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const JsonPath name_at = at.index(i);
+    categories.push_back(read_string(value[i], name_at));
+    if (categories.back().size() > kMaxCategoryNameBytes)
+      name_at.fail("must be " + name_limit() + ", is " + std::to_string(categories.back().size()));
+  }
   return categories;
 }
 

@@ -1,7 +1,6 @@
 // The built-in categories and the numbering of the others.
 #include "display/categories.h"
 
-#include <algorithm>
 #include <array>
 
 #include <glm/glm.hpp>
@@ -43,13 +42,13 @@ static_assert(entries_follow_order());
 std::span<const BuiltinCategory> builtin_categories() { return kBuiltins; }
 
 CategoryTable::CategoryTable() {
-  for (const BuiltinCategory& builtin : kBuiltins) names_.emplace_back(builtin.name);
+  for (const BuiltinCategory& builtin : kBuiltins) (void)index_of(builtin.name);
 }
 
 std::uint32_t CategoryTable::index_of(std::string_view name) {
-  const auto found = std::find(names_.begin(), names_.end(), name);
-  if (found != names_.end()) return static_cast<std::uint32_t>(found - names_.begin());
+  if (const auto found = indices_.find(name); found != indices_.end()) return found->second;
   names_.emplace_back(name);
+  indices_.emplace(names_.back(), size() - 1);
   return size() - 1;
 }
 

@@ -5,10 +5,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "soundpaint/display.h"
@@ -27,7 +29,8 @@ class CategoryTable {
  public:
   CategoryTable();
 
-  // The name's index, adding the name if it is new.
+  // The name's index, adding the name if it is new. Hashed: numbering n
+  // names costs O(n), as a world of thousands of categories needs.
   std::uint32_t index_of(std::string_view name);
 
   // Precondition: index < size().
@@ -39,7 +42,14 @@ class CategoryTable {
   Shape shape_of(std::uint32_t index, const std::map<std::string, Shape>& overrides) const;
 
  private:
+  // Looks a std::string_view up without building a std::string.
+  struct NameHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view name) const noexcept { return std::hash<std::string_view>{}(name); }
+  };
+
   std::vector<std::string> names_;
+  std::unordered_map<std::string, std::uint32_t, NameHash, std::equal_to<>> indices_;  // name -> index in names_
 };
 
 // The palette entry of the category with this index, in a palette of

@@ -7,7 +7,9 @@
 namespace sp {
 
 // Throws sp::Exception(InvalidConfig) naming the key ("display.size_scale")
-// when a setting is out of its range (docs/accessibility.md, section 4).
+// when a setting is out of its range (docs/accessibility.md, section 4), or
+// a category list is longer than kMaxDisplayCategories or names a category
+// longer than kMaxCategoryNameBytes. Linear in the lists' lengths.
 void check_display_settings(const DisplaySettings& settings);
 
 }  // namespace sp
