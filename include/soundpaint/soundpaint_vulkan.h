@@ -11,8 +11,12 @@
  *   the simulation and the draw as it does its own passes.
  * - The host's Vulkan objects are borrowed for the visualizer's lifetime:
  *   destroy the visualizer before the device.
- * - One sp_visualizer (with its sp_sound_scene) must be used by one thread
- *   at a time, the one recording its command buffers.
+ * - Threads: every sp_visualizer_* call but sp_visualizer_scene and
+ *   sp_visualizer_backend belongs to the render thread, the one recording
+ *   its command buffers; a call made while another thread is inside one on
+ *   the same visualizer returns SP_ERROR_INVALID_ARGUMENT. sp_visualizer_scene,
+ *   sp_visualizer_backend and the sp_sound_scene_* changes may come from any
+ *   thread (an audio thread): they are queued to the next step.
  */
 #ifndef SOUNDPAINT_SOUNDPAINT_VULKAN_H
 #define SOUNDPAINT_SOUNDPAINT_VULKAN_H

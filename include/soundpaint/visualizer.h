@@ -134,6 +134,8 @@ class Visualizer {
   virtual Backend backend() const = 0;
 
   // Listener, sources and moving parts; changes apply from the next step.
+  // SoundScene's changes may come from the audio thread while this thread
+  // records (SoundScene documents which calls are any thread's).
   virtual SoundScene& scene() = 0;
 
   // Steps whose indicators record_draw draws (recorded for Gpu, finished
