@@ -166,6 +166,33 @@ TEST(CapiThreads, AudioThreadCallsWhileTheRenderThreadSteps) {
   EXPECT_GT(of_last, 0u);
 }
 
+// The render thread's calls may move from thread to thread between them
+// (soundpaint.h, Thread-safety): stepping here, then reading and stepping
+// on another thread, is allowed, and SoundScene's debug thread check
+// (assertions are on under ThreadSanitizer) follows the hand-over rather
+// than aborting.
+TEST(CapiThreads, RenderCallsMayMoveToAnotherThreadBetweenCalls) {
+  Simulation s;
+  ASSERT_EQ(sp_scene_create(kQuad, 2, kQuadLayers, kLayerNames, 1, &s.scene), SP_OK) << last_error();
+  ASSERT_EQ(sp_simulation_create(s.scene, kConfig, SP_BACKEND_CPU, &s.sim), SP_OK) << last_error();
+  ASSERT_EQ(sp_simulation_step(s.sim), SP_OK) << last_error();
+  sp_result stats_result = SP_ERROR_INVALID_ARGUMENT;
+  sp_result step_result = SP_ERROR_INVALID_ARGUMENT;
+  sp_stats stats{};
+  std::thread other([&] {
+    stats_result = sp_simulation_stats(s.sim, &stats);
+    (void)live_indicators(s.sim);
+    step_result = sp_simulation_step(s.sim);
+  });
+  other.join();
+  EXPECT_EQ(stats_result, SP_OK);
+  EXPECT_EQ(step_result, SP_OK);
+  EXPECT_EQ(stats.steps, 1u);
+  ASSERT_EQ(sp_simulation_step(s.sim), SP_OK) << last_error();  // and back again
+  ASSERT_EQ(sp_simulation_stats(s.sim, &stats), SP_OK) << last_error();
+  EXPECT_EQ(stats.steps, 3u);
+}
+
 // Stepping and reading are the render thread's, one call at a time. A host
 // that breaks the rule from two threads gets an error naming it from the
 // call that overlapped, never a race: every call either runs alone or is

@@ -12,6 +12,7 @@
 #include "soundpaint/config.h"
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
+#include "sim/sound_scene_backend.h"
 #include "soundpaint/simulation.h"
 #include "soundpaint/soundpaint.h"
 #include "sp_types.h"
@@ -41,6 +42,13 @@ class OneThreadAtATime {
   // Throws InvalidArgument (naming `function`) when another thread is inside.
   [[nodiscard]] Scope enter(const char* function) const {
     claim(function);
+    return Scope(*this);
+  }
+  // Enters, and makes the calling thread the one that steps `scene`
+  // (SoundScene's debug thread check), which it is until it leaves.
+  [[nodiscard]] Scope enter(const char* function, sp::SoundScene& scene) const {
+    claim(function);
+    sp::detail::SoundSceneBackend::hand_over_to_calling_thread(scene);
     return Scope(*this);
   }
   // Enters without leaving: for destroy, after which there is nothing to leave.

@@ -279,7 +279,7 @@ sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_step";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
-    const auto one_thread = simulation->stepping.enter(fn);
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
     unwrap(simulation->simulator->step());
   });
 }
@@ -298,7 +298,7 @@ sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator*
   return guarded([&] {
     const char* fn = "sp_simulation_live_indicators";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
-    const auto one_thread = simulation->stepping.enter(fn);
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
     require(count != nullptr, fn, "count is NULL");
     require(out != nullptr || capacity == 0, fn, "out is NULL but capacity > 0");
     const std::vector<sp::Indicator> live = unwrap(simulation->simulator->live_indicators());
@@ -314,7 +314,7 @@ sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept
   return guarded([&] {
     const char* fn = "sp_simulation_stats";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
-    const auto one_thread = simulation->stepping.enter(fn);
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
     require(out != nullptr, fn, "out is NULL");
     const sp::SimulationStats stats = unwrap(simulation->simulator->stats());
     sp_stats result{};

@@ -69,7 +69,7 @@ sp::Visualizer& visualizer_of(const sp_visualizer* visualizer, const char* fn) {
 // Thread-safety), entered for as long as the returned scope lives.
 struct RenderCall {
   RenderCall(const sp_visualizer* visualizer, const char* fn)
-      : v(visualizer_of(visualizer, fn)), one_thread(visualizer->rendering.enter(fn)) {}
+      : v(visualizer_of(visualizer, fn)), one_thread(visualizer->rendering.enter(fn, v.scene())) {}
   sp::Visualizer& v;
   sp::capi::OneThreadAtATime::Scope one_thread;
 };

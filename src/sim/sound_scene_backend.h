@@ -14,6 +14,11 @@ namespace sp::detail {
 struct SoundSceneBackend {
   static void plan(SoundScene& scene, std::uint64_t step, StepPlan& out) { scene.plan(step, out); }
   static BvhChanges update_geometry(SoundScene& scene) { return scene.update_geometry(); }
+  // For a caller that serialises its render-thread calls itself (the C
+  // API's one-thread-at-a-time guard): the thread now inside becomes the
+  // thread that steps, so the debug thread check follows a host that moves
+  // those calls from thread to thread between them, as the C API allows.
+  static void hand_over_to_calling_thread(SoundScene& scene) { scene.note_stepping_thread(); }
 };
 
 }  // namespace sp::detail
