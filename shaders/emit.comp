@@ -19,6 +19,7 @@ void main() {
     set_queue_groups(1u);
     control.step_indicators = 0u;
     control.step_casts = 0u;
+    control.step_cut_short = 0u;
   }
   if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
   if (i >= total) return;

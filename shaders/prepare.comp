@@ -31,6 +31,7 @@ void main() {
   control.admit_count = 0u;
   add64(control.total_indicators_lo, control.total_indicators_hi, made);
   add64(control.total_casts_lo, control.total_casts_hi, control.step_casts);
+  add64(control.total_cut_short_lo, control.total_cut_short_hi, control.step_cut_short);
   add64(control.total_rays_lo, control.total_rays_hi, step_input.total_rays);
   control.max_step_casts = max(control.max_step_casts, control.step_casts);
   control.steps += 1u;

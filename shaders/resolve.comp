@@ -17,6 +17,7 @@ void main() {
   bool alive = false;
   bool resolving = false;
   uint made = 0u;  // indicators this ray wrote: 0, 1, or 2 (a sheet's hit and exit)
+  bool cut_short = false;
   uint ray_index = 0u;
   Indicator indicator;
   Indicator sheet_exit;
@@ -44,11 +45,15 @@ void main() {
       outcome = sp_resolve_backcast(r, found, tri, source, step_input.params, indicator);
       if ((outcome & SP_OUTCOME_BACKCAST_MISS) != 0u) count_event(r.entry_layer, SP_COUNTER_BACKCAST_MISSES);
     }
+    cut_short = (outcome & SP_OUTCOME_CUT_SHORT) != 0u;
     rays[ray_index] = r;
     alive = r.state != SP_RAY_DEAD;
     resolving = r.state == SP_RAY_RESOLVING;
     made = (outcome & SP_OUTCOME_INDICATOR) != 0u ? ((outcome & SP_OUTCOME_SHEET_EXIT) != 0u ? 2u : 1u) : 0u;
   }
+
+  uint cut = subgroupAdd(cut_short ? 1u : 0u);
+  if (subgroupElect() && cut > 0u) atomicAdd(control.step_cut_short, cut);
 
   // Indicators: one atomic per subgroup reserves slots in the step's
   // capture list; admit.comp picks the ring's share of them after the step.

@@ -27,8 +27,23 @@ using namespace sp::test;
 struct CompareStats {
   std::size_t hits = 0;        // rays the brute force sees hit something
   std::size_t near_ties = 0;   // the BVH chose another hit a rounding error away
+  std::size_t cut_short = 0;   // casts that rightly ended at SP_MAX_CAST_PACKETS
   std::size_t mismatches = 0;  // anything else that differs: always a bug
 };
+
+// The packets (SP_LEAF_PACKETS) of the leaves whose box the ray enters
+// within (tmin, limit]. Any walk with the closest-hit rule enters every
+// leaf that passes with the final best hit, and only leaves that pass with
+// tmax: with limit = the brute force's answer this is the least work a
+// whole walk does, with limit = tmax the most.
+std::uint32_t packets_in_reach(const sp::Bvh& bvh, const Ray& r, float limit) {
+  const auto q = sp::shader::sp_make_query(r.origin, r.dir, r.tmin, r.tmax);
+  std::uint32_t packets = 0;
+  for (const sp::BvhNode& n : bvh.nodes)
+    if (n.count > 0u && sp::shader::sp_intersect_box(q, n.bmin, n.bmax, limit) != SP_FAR)
+      packets += SP_LEAF_PACKETS(n.count);
+  return packets;
+}
 
 // The traversal must return exactly what testing every triangle returns, with
 // one tolerated exception, counted in near_ties: the shared box test prunes
@@ -42,7 +57,18 @@ CompareStats compare_with_brute_force(const sp::Bvh& bvh, const std::vector<Ray>
     sp::HitInfo fast = sp::closest_hit(bvh, r.origin, r.dir, r.tmin, r.tmax);
     sp::HitInfo slow = sp::closest_hit_brute_force(bvh, r.origin, r.dir, r.tmin, r.tmax);
     if (slow.triangle != SP_INVALID) ++stats.hits;
-    if (fast.triangle == slow.triangle && fast.t == slow.t) continue;
+    // A cast is cut short exactly when the walk would exceed its bound:
+    // certainly past the most work it can do, never within the least.
+    if (fast.cut_short != 0u) {
+      const std::uint32_t most = packets_in_reach(bvh, r, r.tmax);
+      if (most > SP_MAX_CAST_PACKETS && fast.triangle == SP_INVALID) {
+        ++stats.cut_short;
+        continue;
+      }
+    } else if (packets_in_reach(bvh, r, slow.t) > SP_MAX_CAST_PACKETS) {
+      ADD_FAILURE() << "a whole walk past SP_MAX_CAST_PACKETS was not cut short";
+    }
+    if (fast.triangle == slow.triangle && fast.t == slow.t && fast.cut_short == 0u) continue;
     if (fast.triangle != SP_INVALID && slow.triangle != SP_INVALID && fast.t >= slow.t &&
         fast.t - slow.t <= 1.0e-5f * (1.0f + slow.t)) {
       ++stats.near_ties;

@@ -276,10 +276,14 @@ std::vector<Ray> vary_windows(std::vector<Ray> rays, std::uint32_t seed) {
 struct Agreement {
   std::size_t rays = 0;
   std::size_t hits = 0;
+  std::size_t cut_short = 0;        // closest-hit casts past SP_MAX_CAST_PACKETS
+  std::size_t lists_cut_short = 0;  // nearest-hits lists likewise
 };
 
 // The matter query's lists, entry by entry, bit for bit.
 bool same_list(const sp::shader::HitList& a, const sp::shader::HitList& b) {
+  if (a.cut_short != b.cut_short) return false;
+  if (a.cut_short != 0u) return true;  // neither list is to be read
   if (a.count != b.count) return false;
   for (std::uint32_t k = 0; k < a.count; ++k)
     if (a.triangle[k] != b.triangle[k] || a.key[k] != b.key[k] ||
@@ -323,15 +327,18 @@ Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vec
     const sp::HitInfo dispatched = sp::closest_hit(bvh, r.origin, r.dir, r.tmin, r.tmax);
     ++agreement.rays;
     agreement.hits += binary.triangle != SP_INVALID;
-    const bool same = wide.triangle == binary.triangle &&
+    agreement.cut_short += binary.cut_short;
+    agreement.lists_cut_short += binary_list.cut_short;
+    const bool same = wide.triangle == binary.triangle && wide.cut_short == binary.cut_short &&
                       std::bit_cast<std::uint32_t>(wide.t) == std::bit_cast<std::uint32_t>(binary.t);
-    const bool same_dispatched = dispatched.triangle == wide.triangle &&
+    const bool same_dispatched = dispatched.triangle == wide.triangle && dispatched.cut_short == wide.cut_short &&
                                  std::bit_cast<std::uint32_t>(dispatched.t) == std::bit_cast<std::uint32_t>(wide.t);
     if ((!same || !same_dispatched) && ++failures <= 5) {
       ADD_FAILURE() << std::hexfloat << "ray o=(" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") d=("
                     << r.dir.x << ", " << r.dir.y << ", " << r.dir.z << ") t in (" << r.tmin << ", " << r.tmax
-                    << "]: wide " << wide.triangle << " t=" << wide.t << ", binary " << binary.triangle
-                    << " t=" << binary.t << ", closest_hit " << dispatched.triangle << " t=" << dispatched.t;
+                    << "]: wide " << wide.triangle << " t=" << wide.t << " cut " << wide.cut_short << ", binary "
+                    << binary.triangle << " t=" << binary.t << " cut " << binary.cut_short << ", closest_hit "
+                    << dispatched.triangle << " t=" << dispatched.t << " cut " << dispatched.cut_short;
     }
   }
   EXPECT_EQ(failures, 0u) << "of " << rays.size() << " rays";
@@ -492,16 +499,19 @@ TEST(WideBvh, ClosedShapesMatchBinary) {
 }
 
 // Leaves of hundreds of triangles (the depth cap) take many packets; the
-// unbalanced tree reaches SP_BVH_MAX_DEPTH levels, the stack's bound.
+// unbalanced tree reaches SP_BVH_MAX_DEPTH levels, the stack's bound. 600
+// triangles keep a cast through them under SP_MAX_CAST_PACKETS, so every
+// cast ends whole (HostileShapesCutTheSameCastsAsBinary tests the cut).
 TEST(WideBvh, DepthCapAndDeepTreesMatchBinary) {
-  Soup soup = make_identical_centroids(5000);
+  Soup soup = make_identical_centroids(600);
   for (std::uint32_t depth : {4u, std::uint32_t{SP_BVH_MAX_DEPTH}}) {
     sp::BvhBuildSettings s;
     s.max_depth = depth;
     sp::Bvh bvh = soup.build(s);
     check_wide_invariants(bvh);
     Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(0), vec3(2, 3, 4), 4000, depth), depth));
-    EXPECT_GT(a.hits, 1000u);
+    EXPECT_GT(a.hits, 800u);
+    EXPECT_EQ(a.cut_short, 0u);
   }
 
   Soup deep;
@@ -574,6 +584,44 @@ TEST(WideBvh, CoincidentTrianglesMatchBinary) {
   const sp::HitInfo h = sp::closest_hit(bvh, vec3(0.5f, 0.5f, -20.0f), vec3(0, 0, 1), 0.0f, kNoLimit);
   ASSERT_NE(h.triangle, SP_INVALID);
   EXPECT_EQ(bvh.triangles[h.triangle].scene_index, 0u);
+}
+
+// Hostile levels (issue 38): a quad repeated 3,000 times, and 2,000 long
+// slivers whose boxes all overlap, defeat the tree, so casts through them
+// reach SP_MAX_CAST_PACKETS. Every walk must cut the same casts at the same
+// leaf as the binary walk (the GPU's), and leave the others whole.
+TEST(WideBvh, HostileShapesCutTheSameCastsAsBinary) {
+  Soup coincident;
+  for (int i = 0; i < 1500; ++i) {
+    coincident.tri(vec3(-2, 0, -2), vec3(2, 0, -2), vec3(2, 0, 2));
+    coincident.tri(vec3(-2, 0, -2), vec3(2, 0, 2), vec3(-2, 0, 2));
+  }
+  Soup slivers;
+  std::mt19937 rng(38);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 d = glm::normalize(vec3(u(rng), u(rng), u(rng)));
+    const vec3 c(u(rng), u(rng), u(rng));
+    slivers.tri(c - 10.0f * d, c + 10.0f * d, c - 10.0f * d + vec3(0.01f, 0.01f, 0.0f));
+  }
+  for (Soup* soup : {&coincident, &slivers}) {
+    sp::Bvh bvh = soup->build(sp::BvhBuildSettings{});
+    check_wide_invariants(bvh);
+    std::vector<Ray> rays;
+    constexpr std::size_t kMissing = 200;  // start above the shape and head away from it
+    for (std::size_t i = 0; i < kMissing; ++i)
+      rays.push_back({vec3(u(rng), 12.0f, u(rng)), glm::normalize(vec3(u(rng), 1.0f, u(rng))), 0.0f, kNoLimit});
+    for (int i = 0; i < 1000; ++i) {
+      const vec3 o(u(rng) * 3.0f, 3.0f + u(rng), u(rng) * 3.0f);
+      const vec3 target(u(rng), u(rng) * 0.5f, u(rng));
+      rays.push_back({o, glm::normalize(target - o), 0.0f, kNoLimit});
+      rays.push_back({target, glm::normalize(o - target), -1e-3f, 0.5f});  // a matter query's window
+    }
+    const Agreement agreement = expect_same_as_binary(bvh, rays);
+    EXPECT_GT(agreement.cut_short, 100u) << "the shape no longer defeats the tree: make it harder";
+    EXPECT_LE(agreement.cut_short, rays.size() - kMissing) << "rays that miss the shape end whole";
+    EXPECT_GT(agreement.lists_cut_short, 100u);
+  }
 }
 
 // The baseline walk is always there; the process starts on the fastest one

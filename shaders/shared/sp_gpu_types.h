@@ -87,10 +87,11 @@ struct Control {
   uint admit_group_count_y;
   uint admit_group_count_z;
   uint admit_count;
+  // Casts that ended at SP_MAX_CAST_PACKETS: this step's, and the run's.
+  uint step_cut_short;
+  uint total_cut_short_lo;
+  uint total_cut_short_hi;
   uint pad0;
-  uint pad1;
-  uint pad2;
-  uint pad3;
 };
 SP_CHECK_LAYOUT(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 

@@ -92,7 +92,12 @@ SP_INLINE CastResult sp_find_exit(SP_MATTER_ARGS_DECL HitList list, uint entry_t
   result.t = 0.0f;
   result.triangle = SP_INVALID;
   result.matter_loss = 0.0f;
-  result.pad0 = 0u;
+  result.flags = 0u;
+  // A walk cut short saw only part of the faces: no way out is known.
+  if (list.cut_short != 0u) {
+    result.flags = SP_CAST_CUT_SHORT;
+    return result;
+  }
   // Layers of the solids the ray is inside (s0 .. s3).
   uint stack_size = 0u;
   uint s0 = 0u;

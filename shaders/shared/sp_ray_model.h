@@ -91,7 +91,7 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
   r.casts += 1u;
   if (found.triangle == SP_INVALID) {
     r.state = SP_RAY_DEAD;
-    return 0u;
+    return (found.flags & SP_CAST_CUT_SHORT) != 0u ? SP_OUTCOME_CUT_SHORT : 0u;
   }
   SP_PRECISE float travelled = r.travelled + found.t;
   SP_PRECISE float energy = r.energy - found.t * p.air_attenuation;
@@ -178,7 +178,7 @@ SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, CastResult found, BvhTr
   r.casts += 1u;
   if (found.triangle == SP_INVALID) {  // no way out within W_max: absorbed
     r.state = SP_RAY_DEAD;
-    return SP_OUTCOME_BACKCAST_MISS;
+    return SP_OUTCOME_BACKCAST_MISS | ((found.flags & SP_CAST_CUT_SHORT) != 0u ? SP_OUTCOME_CUT_SHORT : 0u);
   }
   SP_PRECISE float energy = r.energy - found.matter_loss;
   SP_PRECISE float travelled = r.travelled + found.t;

@@ -139,22 +139,33 @@ SP_INLINE bool sp_better_hit(float t, uint scene_index, float best_t, uint best_
   return t < best_t || (t == best_t && scene_index < best_scene);
 }
 
-// Closest hit with distance in (tmin, tmax]. Two-sided triangles.
+// Closest hit with distance in (tmin, tmax]. Two-sided triangles. A walk
+// whose next leaf would take it past SP_MAX_CAST_PACKETS ends there with no
+// hit and cut_short set.
 SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmin, float tmax) {
   RayQuery q = sp_make_query(origin, dir, tmin, tmax);
   HitInfo best;
   best.t = tmax;
   best.triangle = SP_INVALID;
+  best.cut_short = 0u;
   uint best_scene = SP_INVALID;  // lets a hit at exactly tmax through
 
   uint stack[SP_BVH_MAX_DEPTH];
   uint stack_size = 0u;
   uint node_index = 0u;
+  uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
   if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, best.t) == SP_FAR) return best;
 
   for (;;) {
     BvhNode node = bvh_nodes[node_index];
     if (node.count > 0u) {
+      packets += SP_LEAF_PACKETS(node.count);
+      if (packets > SP_MAX_CAST_PACKETS) {
+        best.t = tmax;
+        best.triangle = SP_INVALID;
+        best.cut_short = 1u;
+        return best;
+      }
       for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
         BvhTriangle tri = bvh_triangles[i];
         float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
@@ -255,15 +266,22 @@ SP_INLINE float sp_hit_list_limit(uint count, float worst, float tmax) {
 SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmin, float tmax, SP_OUT(HitList) list) {
   RayQuery q = sp_make_query(origin, dir, tmin, tmax);
   list.count = 0u;
+  list.cut_short = 0u;
   list.t[SP_MATTER_MAX_HITS - 1u] = tmax;  // read by the limit before the list is full
   uint stack[SP_BVH_MAX_DEPTH];
   uint stack_size = 0u;
   uint node_index = 0u;
+  uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
   if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, tmax) == SP_FAR) return;
 
   for (;;) {
     BvhNode node = bvh_nodes[node_index];
     if (node.count > 0u) {
+      packets += SP_LEAF_PACKETS(node.count);
+      if (packets > SP_MAX_CAST_PACKETS) {
+        list.cut_short = 1u;
+        return;
+      }
       for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
         BvhTriangle tri = bvh_triangles[i];
         float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);

@@ -32,6 +32,21 @@
 // solids lose at the largest attenuation among them). Deeper nesting is
 // still counted; a fifth solid's layer is not remembered.
 #define SP_MATTER_STACK 4
+// The work one cast may do (docs/model.md#work-bounds), in triangles tested
+// four at a time: each leaf the walk enters costs ceil(count / 4), the
+// packets of the CPU's wide walk. A level's BVH separates its triangles, so
+// a cast enters a handful of leaves: at most 14 on the shared OpenArena maps
+// and the bundled level over 400,000 random rays, 1 in the median.
+// Coincident or overlapping triangles (a quad repeated 100,000 times, long
+// slivers whose boxes all overlap) defeat any tree, and a cast there would
+// test every triangle: a stranger's 2 MB level stalls the game. A walk that
+// would exceed this ends: the ray dies as on a miss, counted in the stats
+// (casts_cut_short). Every walk, binary or wide, enters the same leaves in
+// the same order (src/bvh/wide_bvh.h), so every backend cuts the same casts
+// at the same leaf. About 1,000 triangle tests, a few microseconds.
+#define SP_MAX_CAST_PACKETS 256u
+// The packets of four triangles a leaf of `count` triangles costs.
+#define SP_LEAF_PACKETS(count) (((count) + 3u) / 4u)
 // "No hit" marker in HitInfo.triangle and BvhNode links.
 #define SP_INVALID 0xFFFFFFFFu
 // A distance larger than any scene; used instead of +inf, which GLSL lacks.
@@ -67,6 +82,11 @@
 // The ray turned round an exposed edge of the face it struck
 // (docs/model.md#diffraction) instead of reflecting or penetrating.
 #define SP_OUTCOME_DIFFRACT 128u
+// The cast reached SP_MAX_CAST_PACKETS and ended: the ray died.
+#define SP_OUTCOME_CUT_SHORT 256u
+
+// CastResult::flags.
+#define SP_CAST_CUT_SHORT 1u
 
 SP_BEGIN_NAMESPACE
 
@@ -208,11 +228,14 @@ struct Indicator {
 SP_CHECK_LAYOUT(sizeof(Indicator) == 96 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 && offsetof(Indicator, dir) == 48 && offsetof(Indicator, path_length) == 60 && offsetof(Indicator, kind) == 64 && offsetof(Indicator, iteration) == 92 && alignof(Indicator) == 4);
 
 // Closest-hit query result; triangle is a leaf-order index or SP_INVALID.
+// cut_short: 1 when the walk ended at SP_MAX_CAST_PACKETS (triangle is then
+// SP_INVALID: the cast found nothing it may use).
 struct HitInfo {
   float t;
   uint triangle;
+  uint cut_short;
 };
-SP_CHECK_LAYOUT(sizeof(HitInfo) == 8);
+SP_CHECK_LAYOUT(sizeof(HitInfo) == 12);
 
 // What one cast found, 16 bytes. Active ray: the closest hit (matter_loss 0).
 // ResolvingPenetration ray: the exit face and its distance t from p_in, and
@@ -222,7 +245,7 @@ struct CastResult {
   float t;
   uint triangle;
   float matter_loss;
-  uint pad0;
+  uint flags;  // SP_CAST_*
 };
 SP_CHECK_LAYOUT(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) == 8);
 
@@ -230,14 +253,16 @@ SP_CHECK_LAYOUT(sizeof(CastResult) == 16 && offsetof(CastResult, matter_loss) ==
 // matter query sees. count == SP_MATTER_MAX_HITS means there may be more
 // beyond t[SP_MATTER_MAX_HITS - 1]. key = solid * 4 + crossing code
 // (SP_CROSSING_*), so that the two triangles of one surface met through
-// their shared edge, alike in both, take one entry.
+// their shared edge, alike in both, take one entry. cut_short: 1 when the
+// walk ended at SP_MAX_CAST_PACKETS; the list is then not to be used.
 struct HitList {
   float t[SP_MATTER_MAX_HITS];
   uint triangle[SP_MATTER_MAX_HITS];
   uint key[SP_MATTER_MAX_HITS];
   uint count;
+  uint cut_short;
 };
-SP_CHECK_LAYOUT(sizeof(HitList) == 4 * (3 * SP_MATTER_MAX_HITS + 1));
+SP_CHECK_LAYOUT(sizeof(HitList) == 4 * (3 * SP_MATTER_MAX_HITS + 2));
 
 SP_END_NAMESPACE
 

@@ -12,7 +12,7 @@ namespace sp {
 
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   // The shared traversal reads nodes[0] unconditionally.
-  if (bvh.nodes.empty()) return HitInfo{tmax, SP_INVALID};
+  if (bvh.nodes.empty()) return HitInfo{tmax, SP_INVALID, 0u};
   if (bvh.wide) return wide_closest_hit(*bvh.wide, bvh, origin, dir, tmin, tmax);
   return shader::sp_closest_hit(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
 }
@@ -30,7 +30,7 @@ HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
   // Same start state and acceptance rule as sp_closest_hit, so that only the
   // pruning differs between the two; except that a miss (SP_FAR) is never a
   // hit, even when tmax == SP_FAR.
-  HitInfo best{tmax, SP_INVALID};
+  HitInfo best{tmax, SP_INVALID, 0u};
   std::uint32_t best_scene = SP_INVALID;
   for (std::size_t i = 0; i < bvh.triangles.size(); ++i) {
     const BvhTriangle& tri = bvh.triangles[i];

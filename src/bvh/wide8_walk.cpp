@@ -28,7 +28,7 @@ bool cpu_runs() { return false; }
 void collapse(const Bvh&, std::span<const std::uint32_t>, std::uint32_t, WideBvh&) { assert(false); }
 HitInfo closest_hit(const WideBvh&, const Bvh&, glm::vec3, glm::vec3, float, float tmax) {
   assert(false);
-  return HitInfo{tmax, SP_INVALID};
+  return HitInfo{tmax, SP_INVALID, 0u};
 }
 shader::HitList nearest_hits(const WideBvh&, const Bvh&, glm::vec3, glm::vec3, float, float) {
   assert(false);
@@ -312,6 +312,7 @@ SP_TARGET_WIDE8 SP_ALWAYS_INLINE void traverse8(const WideBvh& wide, const WideR
         continue;
       }
     } else {
+      if (!best.enter_leaf(item.count)) return;
       intersect_packets(ray4, packets + item.child, item.count, best);
     }
     if (!pop_live<kBehind>(stack, size, best.limit())) return;

@@ -175,6 +175,7 @@ SP_ALWAYS_INLINE void traverse(const WideBvh& wide, const WideRay& ray, std::uin
         continue;
       }
     } else {
+      if (!best.enter_leaf(item.count)) return;
       intersect_packets(ray, packets + item.child, item.count, best);
     }
     if (!pop_live<kBehind>(stack, size, best.limit())) return;

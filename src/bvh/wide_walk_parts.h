@@ -139,15 +139,30 @@ SP_ALWAYS_INLINE float far_margin(float tfar) {
 
 // What a walk collects. Its limit() is the farthest distance still worth
 // visiting, which only ever shrinks; offer() takes a hit with t in
-// (tmin, limit()].
+// (tmin, limit()]; enter_leaf(packets) counts the work of the leaves the
+// walk enters and is false past SP_MAX_CAST_PACKETS, where the walk ends
+// with the collector cut short, as the shared walks do (sp_traverse.h).
+// The walks enter the same leaves in the same order as the binary one, so
+// they stop at the same leaf.
 
 // The best hit so far, with sp_closest_hit's acceptance rule.
 struct Best {
   HitInfo hit;
   const BvhTriangle* triangles;
+  float tmax;
+  std::uint32_t packets;
 
   // No hit yet within tmax.
-  static Best start(const Bvh& bvh, float tmax) { return Best{HitInfo{tmax, SP_INVALID}, bvh.triangles.data()}; }
+  static Best start(const Bvh& bvh, float tmax) {
+    return Best{HitInfo{tmax, SP_INVALID, 0u}, bvh.triangles.data(), tmax, 0u};
+  }
+
+  bool enter_leaf(std::uint32_t leaf_packets) {
+    packets += leaf_packets;
+    if (packets <= SP_MAX_CAST_PACKETS) return true;
+    hit = HitInfo{tmax, SP_INVALID, 1u};
+    return false;
+  }
 
   float limit() const { return hit.t; }
   std::uint32_t scene(std::uint32_t triangle) const {
@@ -156,7 +171,7 @@ struct Best {
   // The scene index is read only for an exact tie, where sp_better_hit
   // needs it.
   void offer(float t, std::uint32_t triangle) {
-    if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle};
+    if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle, 0u};
   }
 };
 
@@ -166,13 +181,22 @@ struct Nearest {
   float tmax;
   glm::vec3 dir;
   const BvhTriangle* triangles;
+  std::uint32_t packets;
 
   // An empty list, as sp_nearest_hits starts it.
   static Nearest start(const Bvh& bvh, glm::vec3 dir, float tmax) {
-    Nearest nearest{{}, tmax, dir, bvh.triangles.data()};
+    Nearest nearest{{}, tmax, dir, bvh.triangles.data(), 0u};
     nearest.list.count = 0u;
+    nearest.list.cut_short = 0u;
     nearest.list.t[SP_MATTER_MAX_HITS - 1u] = tmax;
     return nearest;
+  }
+
+  bool enter_leaf(std::uint32_t leaf_packets) {
+    packets += leaf_packets;
+    if (packets <= SP_MAX_CAST_PACKETS) return true;
+    list.cut_short = 1u;
+    return false;
   }
 
   float limit() const { return shader::sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax); }

@@ -38,6 +38,7 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   out.binned_ = false;  // until every chunk is binned: a throwing step leaves lists and bins unmatched
   for (WorkerCounters& worker : worker_counters_) {
     worker.counters.casts = 0;
+    worker.counters.cut_short = 0;
     std::fill(worker.counters.layers.begin(), worker.counters.layers.end(), LayerCounters{});
   }
 
@@ -61,9 +62,11 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   out.binned_inverse_size_ = inverse_indicator_size;
 
   out.counters.casts = 0;
+  out.counters.cut_short = 0;
   out.counters.layers.assign(layer_count_, LayerCounters{});
   for (const WorkerCounters& worker : worker_counters_) {
     out.counters.casts += worker.counters.casts;
+    out.counters.cut_short += worker.counters.cut_short;
     for (std::size_t l = 0; l < layer_count_; ++l) accumulate(out.counters.layers[l], worker.counters.layers[l]);
   }
 }

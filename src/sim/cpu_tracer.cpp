@@ -24,7 +24,7 @@ void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVec
       const float reach = sp_active_reach(ray, p);
       const HitInfo hit = context.embree ? context.embree->closest_hit(ray.origin, ray.dir, 0.0f, reach)
                                          : closest_hit(*context.bvh, ray.origin, ray.dir, 0.0f, reach);
-      found = CastResult{hit.t, hit.triangle, 0.0f, 0u};
+      found = CastResult{hit.t, hit.triangle, 0.0f, hit.cut_short != 0u ? SP_CAST_CUT_SHORT : 0u};
     } else {
       // The 4-wide walk again; the same list as the GPU's sp_nearest_hits.
       const HitList list = nearest_hits(*context.bvh, ray.entry, ray.dir, sp_matter_tmin(), p.max_wall_thickness);
@@ -59,6 +59,7 @@ void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVec
       outcome = sp_resolve_backcast(ray, found, triangle, source, p, indicator);
       counters.layers[entry_layer].backcast_misses += (outcome & SP_OUTCOME_BACKCAST_MISS) != 0;
     }
+    counters.cut_short += (outcome & SP_OUTCOME_CUT_SHORT) != 0u;
     const bool made_indicator = (outcome & SP_OUTCOME_INDICATOR) != 0u;
     const bool made_sheet_exit = (outcome & SP_OUTCOME_SHEET_EXIT) != 0u;
     if (made_sheet_exit && !made_indicator) indicators[first] = sheet_exit;

@@ -28,6 +28,7 @@ inline void accumulate(LayerCounters& into, const LayerCounters& more) {
 // Per-worker counters, summed after the step (integer sums: order-free).
 struct TraceCounters {
   std::uint64_t casts = 0;
+  std::uint64_t cut_short = 0;  // casts that ended at SP_MAX_LEAF_VISITS
   std::vector<LayerCounters> layers;
 };
 

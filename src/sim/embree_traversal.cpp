@@ -81,6 +81,7 @@ HitInfo EmbreeTraversal::closest_hit(glm::vec3 origin, glm::vec3 dir, float tmin
   HitInfo hit;
   hit.t = tmax;
   hit.triangle = SP_INVALID;
+  hit.cut_short = 0u;  // Embree's walk has no leaf bound (docs/model.md#work-bounds)
   if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
     hit.t = query.ray.tfar;
     hit.triangle = query.hit.primID;
@@ -100,6 +101,7 @@ HitInfo EmbreeTraversal::closest_hit(glm::vec3, glm::vec3, float, float tmax) co
   HitInfo hit;
   hit.t = tmax;
   hit.triangle = SP_INVALID;
+  hit.cut_short = 0u;  // Embree's walk has no leaf bound (docs/model.md#work-bounds)
   return hit;
 }
 
