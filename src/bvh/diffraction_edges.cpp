@@ -54,12 +54,35 @@ float distance2_to_triangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) 
   return d2_to(a + ab * (vb * denom) + ac * (vc * denom));
 }
 
-// Whether a triangle other than `a` and `b` comes within `radius` of `p`.
-bool buried(const Bvh& bvh, glm::vec3 p, float radius, std::uint32_t a, std::uint32_t b) {
+// What the burial queries of one search may still spend, in leaf packets
+// (SP_LEAF_PACKETS, as a cast counts them): a query near many overlapping
+// boxes (coincident copies, slivers) would otherwise test every triangle,
+// and a level of such edges would take minutes. An edge whose query runs
+// out counts as buried: no diffraction there, and it is counted.
+struct BurialBudget {
+  std::uint64_t packets_left;
+  std::uint64_t undecided = 0;  // edges left unexposed because the budget ran out
+};
+
+// Whether a triangle other than the edge's own `a` and `b`, and of a solid
+// other than theirs, comes within `radius` of `p`
+// (docs/model.md#diffraction). Triangles of the edge's own solid never bury
+// it: the far face of a 1 cm pane, or the end cap of a thin door, lies
+// within the radius of the edge it bounds. True as well when the query
+// would spend more than kBurialQueryPackets or what the budget has left.
+bool buried(const Bvh& bvh, glm::vec3 p, float radius, std::uint32_t a, std::uint32_t b, BurialBudget& budget) {
+  const std::uint32_t solid = bvh.triangles[a].solid;
   const float r2 = radius * radius;
+  std::uint64_t spend = std::min<std::uint64_t>(kBurialQueryPackets, budget.packets_left);
+  auto give_up = [&] {
+    budget.packets_left -= std::min<std::uint64_t>(budget.packets_left, kBurialQueryPackets);
+    budget.undecided += 1;
+    return true;
+  };
   std::uint32_t stack[SP_BVH_MAX_DEPTH * 2];
   std::uint32_t size = 0;
   stack[size++] = 0;
+  std::uint64_t spent = 0;
   while (size > 0) {
     const BvhNode& node = bvh.nodes[stack[--size]];
     const glm::vec3 nearest = glm::clamp(p, node.bmin, node.bmax);
@@ -69,20 +92,27 @@ bool buried(const Bvh& bvh, glm::vec3 p, float radius, std::uint32_t a, std::uin
       stack[size++] = node.left_or_first + 1;
       continue;
     }
+    spent += SP_LEAF_PACKETS(node.count);
+    if (spent > spend) return give_up();
     for (std::uint32_t t = node.left_or_first; t < node.left_or_first + node.count; ++t) {
-      if (t == a || t == b) continue;
       const BvhTriangle& tri = bvh.triangles[t];
-      if (distance2_to_triangle(p, tri.v0, tri.v1, tri.v2) <= r2) return true;
+      if (t == a || t == b || tri.solid == solid) continue;
+      if (distance2_to_triangle(p, tri.v0, tri.v1, tri.v2) <= r2) {
+        budget.packets_left -= spent;
+        return true;
+      }
     }
   }
+  budget.packets_left -= spent;
   return false;
 }
 
 }  // namespace
 
-void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vector<shader::TriangleEdges>& table) {
+std::uint64_t refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi,
+                                    std::vector<shader::TriangleEdges>& table) {
   const std::size_t n = bvh.triangles.size();
-  if (n == 0 || bvh.nodes.empty()) return;
+  if (n == 0 || bvh.nodes.empty()) return 0;
   auto inside = [&](glm::vec3 p) { return glm::all(glm::lessThanEqual(lo, p)) && glm::all(glm::lessThanEqual(p, hi)); };
   auto midpoint = [&](std::uint32_t t, std::uint32_t edge) {
     const BvhTriangle& tri = bvh.triangles[t];
@@ -120,6 +150,7 @@ void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vect
     }
   }
   std::sort(uses.begin(), uses.end());
+  BurialBudget budget{kBurialPacketsPerSearch};
 
   auto expose = [&](const EdgeUse& use, float turn_cos, float turn_sin) {
     shader::TriangleEdges& entry = table[use.triangle];
@@ -133,7 +164,7 @@ void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vect
     const std::size_t count = last - first;
     if (count == 1) {
       const EdgeUse& a = uses[first];
-      if (!buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, a.triangle))
+      if (!buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, a.triangle, budget))
         expose(a, -1.0f, 0.0f);
     } else if (count == 2) {
       const EdgeUse& a = uses[first];
@@ -148,7 +179,7 @@ void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vect
       const float tolerance = 1.0e-6f * glm::length(edge);
       const float turn_cos = std::clamp(glm::dot(ta.normal, tb.normal), -1.0f, 1.0f);
       if (behind_a < -tolerance && behind_b < -tolerance && turn_cos < 1.0f - 1.0e-6f &&
-          !buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, b.triangle)) {
+          !buried(bvh, midpoint(a.triangle, a.edge), kBuriedEdgeDistance, a.triangle, b.triangle, budget)) {
         const float turn_sin = std::sqrt(std::max(0.0f, 1.0f - turn_cos * turn_cos));
         expose(a, turn_cos, turn_sin);
         expose(b, turn_cos, turn_sin);
@@ -156,13 +187,16 @@ void refresh_exposed_edges(const Bvh& bvh, glm::vec3 lo, glm::vec3 hi, std::vect
     }
     first = last;
   }
+  return budget.undecided;
 }
 
-std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh) {
+std::vector<shader::TriangleEdges> find_exposed_edges(const Bvh& bvh, std::uint64_t* undecided) {
   std::vector<shader::TriangleEdges> table(bvh.triangles.size(),
                                            shader::TriangleEdges{glm::vec3(1.0f), 0u, glm::vec3(0.0f), 0u});
+  if (undecided) *undecided = 0;
   if (bvh.nodes.empty()) return table;
-  refresh_exposed_edges(bvh, bvh.nodes[0].bmin, bvh.nodes[0].bmax, table);
+  const std::uint64_t left_out = refresh_exposed_edges(bvh, bvh.nodes[0].bmin, bvh.nodes[0].bmax, table);
+  if (undecided) *undecided = left_out;
   return table;
 }
 
