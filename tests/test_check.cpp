@@ -5,6 +5,7 @@
 // failed; a level too large for float counted sanely.
 #include <algorithm>
 #include <cstdint>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -102,6 +103,80 @@ TEST(Check, TJunctionsOfATriangulatedSolidAreClosed) {
   Scene open;
   add_box_faces(open, {0, 0, 0}, {1, 1, 1}, "brick", test::kAllFaces & ~test::kPlusX);
   EXPECT_EQ(analyse_mesh(to_glm(open.vertices), open.triangle_layers, 1).open_edges, 4u);
+}
+
+// A comb (issue 38): one long edge along x, covered the other way round by
+// the bases of `teeth` small triangles, each [i, i + 1] on the same line.
+// Every base is closed by the long edge; the other two edges of each
+// triangle lie on lines of their own and are open: 2 + 2 * teeth. With
+// tooth `missing` left out, the long edge's stretch [missing, missing + 1]
+// is covered one way only, so the long edge is open too. All the bases lie
+// on one line, which a search pairing every stretch with every edge took
+// quadratic time over (minutes at 100,000 teeth).
+TEST(Check, CollinearEdgesOfACombAreMatchedAlongTheirLine) {
+  constexpr int kTeeth = 20000;
+  for (const int missing : {-1, 777}) {
+    Scene scene;
+    const float n = static_cast<float>(kTeeth);
+    test::add_triangle(scene, {0, 0, 0}, {n, 0, 0}, {n / 2, 5, 0}, "concrete");  // base runs +x
+    for (int i = 0; i < kTeeth; ++i) {
+      if (i == missing) continue;
+      const float x = static_cast<float>(i);
+      test::add_triangle(scene, {x + 1, 0, 0}, {x, 0, 0}, {x + 0.5f, -1, 0}, "concrete");  // base runs -x
+    }
+    const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, 1);
+    const std::uint64_t teeth = missing < 0 ? kTeeth : kTeeth - 1;
+    EXPECT_EQ(topology.open_edges, 2u + 2u * teeth + (missing < 0 ? 0u : 1u)) << "tooth missing: " << missing;
+  }
+}
+
+// Corners far out (a level near 1e15 m, where float spacing is 2^26 m):
+// equal coordinates still weld, so two triangles sharing an edge are one
+// piece of surface, and the weld's grid arithmetic stays in range (it
+// overflowed int64 past 9.2e14 m; UBSan in scripts/test.sh).
+TEST(Check, CornersFarOutWeldByEquality) {
+  for (const float far : {1.0e15f, -3.0e38f, 5000.0f}) {
+    Scene scene;
+    const float step = far * 1e-6f;
+    add_quad(scene, {far, far, far}, {far + step, far, far}, {far + step, far + step, far}, {far, far + step, far},
+             "concrete");
+    const MeshTopology topology = analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, 1);
+    EXPECT_EQ(topology.solid_count, 1u) << far;
+    EXPECT_EQ(topology.open_edges, 4u) << far;
+  }
+}
+
+// The weld's rule, checked against every pair: each corner's welded
+// position lies within 0.1 mm of it, equal corners share an id, and no two
+// welded positions lie within 0.1 mm of each other (else one would have
+// welded to the other). Clusters of corners a few micrometres apart, some
+// straddling the grid's cell borders, and corners beyond 4096 m.
+TEST(Check, WeldJoinsCornersWithinATenthOfAMillimetre) {
+  std::mt19937 rng(38);
+  std::uniform_real_distribution<float> place(-3.0f, 3.0f), jitter(-3e-5f, 3e-5f);
+  std::vector<glm::vec3> corners;
+  for (int cluster = 0; cluster < 300; ++cluster) {
+    glm::vec3 centre(place(rng), place(rng), place(rng));
+    if (cluster % 3 == 0) centre = glm::round(centre * 1e4f) / 1e4f;  // on a cell border
+    if (cluster % 7 == 0) centre += glm::vec3(5000.0f, -9000.0f, 1.0e6f);
+    for (int k = 0; k < 4; ++k) corners.push_back(centre + glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
+    corners.push_back(corners.back());  // an exact copy
+  }
+  std::vector<glm::vec3> positions;
+  const std::vector<std::uint32_t> ids = weld(corners, positions);
+  ASSERT_EQ(ids.size(), corners.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    ASSERT_LT(ids[i], positions.size());
+    EXPECT_LE(glm::distance(glm::dvec3(positions[ids[i]]), glm::dvec3(corners[i])), 1e-4) << i;
+    if (i > 0 && corners[i] == corners[i - 1]) {
+      EXPECT_EQ(ids[i], ids[i - 1]) << i;
+    }
+  }
+  for (std::size_t a = 0; a < positions.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b) {
+      EXPECT_GT(glm::distance(glm::dvec3(positions[a]), glm::dvec3(positions[b])), 1e-4) << a << " " << b;
+    }
+  EXPECT_LT(positions.size(), corners.size() / 2) << "the clusters weld";
 }
 
 TEST(Check, FlippedFaceHasFourInconsistentEdges) {

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <compare>
+#include <limits>
 #include <unordered_map>
 #include <numeric>
 
@@ -22,6 +23,28 @@ std::uint32_t weld_bits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f
 // solid's corners once per face leave them a few float roundings apart
 // (~1e-6 m), and no feature of a level is this small.
 constexpr double kWeldDistance = 1e-4;
+
+// The weld grid's cell of coordinate x on one axis (x a corner's
+// coordinate, or one moved by kWeldDistance): floor(x / (2 kWeldDistance))
+// where that is small, so that the corners within kWeldDistance of a corner
+// lie in at most two cells per axis. From 4096 m out, floats are more than
+// 2.4e-4 apart (past kWeldDistance), so only equal coordinates may weld and
+// the float's own bits name the cell; x moved by kWeldDistance rounds back
+// to x there. Cell numbers then stay far inside int64 at any coordinate (a
+// level near 1e15 m overflowed x / 1e-4), and the two ranges never meet:
+// |floor(x / 2e-4)| < 2^25 below 4096 m, the bits' cells lie beyond 2^40.
+// A corner just below 4096 m and one at it are 2.4e-4 apart, too far to
+// weld, so no neighbour is lost at the seam.
+std::int64_t weld_cell(double x) {
+  constexpr double kBitsFrom = 4096.0;
+  constexpr std::int64_t kBitsBase = std::int64_t{1} << 40;
+  if (std::abs(x) < kBitsFrom) return static_cast<std::int64_t>(std::floor(x / (2.0 * kWeldDistance)));
+  // Within float's range first: rounding may carry a value just past it.
+  const double largest = std::numeric_limits<float>::max();
+  const float f = static_cast<float>(std::clamp(std::abs(x), 0.0, largest));
+  const std::int64_t ordinal = kBitsBase + std::int64_t{std::bit_cast<std::uint32_t>(f)};
+  return x < 0.0 ? -ordinal : ordinal;
+}
 
 }  // namespace
 
@@ -46,38 +69,78 @@ std::vector<std::uint32_t> weld(std::span<const glm::vec3> vertices, std::vector
     exact[order[k]] = static_cast<std::uint32_t>(unique.size() - 1);
   }
 
+  // Cells of the distinct corners, and a flat hash table from each occupied
+  // cell to the run of corners in it (sorted by cell, then by u): a few
+  // allocations for all, where a map of small vectors took a minute and
+  // gigabytes at 2,000,000 scattered triangles.
   using Cell = std::array<std::int64_t, 3>;
-  auto cell_of = [](const glm::vec3& p) {
-    return Cell{static_cast<std::int64_t>(std::floor(double(p.x) / kWeldDistance)),
-                static_cast<std::int64_t>(std::floor(double(p.y) / kWeldDistance)),
-                static_cast<std::int64_t>(std::floor(double(p.z) / kWeldDistance))};
+  auto hash = [](const Cell& c) {
+    std::uint64_t h = 0x9E3779B97F4A7C15u;
+    for (std::int64_t v : c) h = (h ^ static_cast<std::uint64_t>(v)) * 0xBF58476D1CE4E5B9u;  // wraps, as a hash may
+    return h ^ (h >> 29);
   };
-  struct CellHash {
-    std::size_t operator()(const Cell& c) const {
-      return std::hash<std::int64_t>()(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
+  const auto unique_count = static_cast<std::uint32_t>(unique.size());
+  std::vector<Cell> cells(unique_count);
+  for (std::uint32_t u = 0; u < unique_count; ++u)
+    cells[u] = Cell{weld_cell(unique[u].x), weld_cell(unique[u].y), weld_cell(unique[u].z)};
+  std::vector<std::uint32_t> by_cell(unique_count);
+  std::iota(by_cell.begin(), by_cell.end(), 0u);
+  std::sort(by_cell.begin(), by_cell.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return cells[a] != cells[b] ? cells[a] < cells[b] : a < b; });
+  std::vector<std::uint32_t> run_starts;  // into by_cell, one per occupied cell, then the end
+  for (std::uint32_t k = 0; k < unique_count; ++k)
+    if (k == 0 || cells[by_cell[k]] != cells[by_cell[k - 1]]) run_starts.push_back(k);
+  run_starts.push_back(unique_count);
+  std::size_t slots = 16;
+  while (slots < 2 * run_starts.size()) slots *= 2;
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> table(slots, kNone);  // run index, open addressing
+  for (std::uint32_t r = 0; r + 1 < run_starts.size(); ++r) {
+    std::size_t at = hash(cells[by_cell[run_starts[r]]]) & (slots - 1);
+    while (table[at] != kNone) at = (at + 1) & (slots - 1);
+    table[at] = r;
+  }
+  auto run_of = [&](const Cell& c) -> std::uint32_t {
+    for (std::size_t at = hash(c) & (slots - 1);; at = (at + 1) & (slots - 1)) {
+      if (table[at] == kNone || cells[by_cell[run_starts[table[at]]]] == c) return table[at];
     }
   };
-  std::unordered_map<Cell, std::vector<std::uint32_t>, CellHash> grid;  // cell -> welded ids there
-  grid.reserve(unique.size());
-  std::vector<std::uint32_t> welded(unique.size());
-  for (std::size_t u = 0; u < unique.size(); ++u) {
-    const Cell c = cell_of(unique[u]);
-    std::uint32_t found = 0xFFFFFFFFu;
-    for (std::int64_t dx = -1; dx <= 1 && found == 0xFFFFFFFFu; ++dx)
-      for (std::int64_t dy = -1; dy <= 1 && found == 0xFFFFFFFFu; ++dy)
-        for (std::int64_t dz = -1; dz <= 1 && found == 0xFFFFFFFFu; ++dz) {
-          const auto it = grid.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
-          if (it == grid.end()) continue;
-          for (std::uint32_t id : it->second)
-            if (glm::distance(glm::dvec3(positions[id]), glm::dvec3(unique[u])) <= kWeldDistance) {
-              found = id;
-              break;
-            }
+
+  // Each corner, in order, welds to the first earlier corner that stayed
+  // itself (a representative) within kWeldDistance, looking through the (at
+  // most two per axis) cells that the box of that radius around it meets,
+  // in a fixed order, and within a cell in the order of u.
+  std::vector<std::uint32_t> welded(unique_count);
+  std::vector<bool> representative(unique_count, false);
+  for (std::uint32_t u = 0; u < unique_count; ++u) {
+    const glm::dvec3 p(unique[u]);
+    std::int64_t range[3][2];
+    for (int a = 0; a < 3; ++a) {
+      range[a][0] = weld_cell(p[a] - kWeldDistance);
+      range[a][1] = weld_cell(p[a] + kWeldDistance);
+    }
+    std::uint32_t found = kNone;
+    for (int i = 0; i < 8 && found == kNone; ++i) {
+      const int ix = i & 1, iy = (i >> 1) & 1, iz = (i >> 2) & 1;
+      // Each distinct cell once: the upper one only where it differs.
+      if ((ix && range[0][1] == range[0][0]) || (iy && range[1][1] == range[1][0]) ||
+          (iz && range[2][1] == range[2][0]))
+        continue;
+      const std::uint32_t r = run_of(Cell{range[0][ix], range[1][iy], range[2][iz]});
+      if (r == kNone) continue;
+      for (std::uint32_t k = run_starts[r]; k < run_starts[r + 1u]; ++k) {
+        const std::uint32_t v = by_cell[k];
+        if (v >= u) break;  // only corners already placed
+        if (representative[v] && glm::distance(glm::dvec3(unique[v]), p) <= kWeldDistance) {
+          found = welded[v];
+          break;
         }
-    if (found == 0xFFFFFFFFu) {
+      }
+    }
+    if (found == kNone) {
       found = static_cast<std::uint32_t>(positions.size());
       positions.push_back(unique[u]);
-      grid[c].push_back(found);
+      representative[u] = true;
     }
     welded[u] = found;
   }
@@ -121,16 +184,17 @@ struct OpenEdge {
 
 // Collinear edges share a supporting line; lines are compared after
 // rounding their direction to 1e-5 and their point nearest the origin to
-// 0.1 mm, far below any gap that matters and far above float rounding.
+// 0.2 mm (weld_cell: far out, to the float it rounds to), far below any gap
+// that matters and far above float rounding.
 struct LineKey {
   std::array<std::int64_t, 6> q;
   auto operator<=>(const LineKey&) const = default;
 };
 
 LineKey line_key(const glm::dvec3& direction, const glm::dvec3& foot) {
-  auto round = [](double x, double step) { return static_cast<std::int64_t>(std::llround(x / step)); };
-  return LineKey{{round(direction.x, 1e-5), round(direction.y, 1e-5), round(direction.z, 1e-5), round(foot.x, 1e-4),
-                  round(foot.y, 1e-4), round(foot.z, 1e-4)}};
+  auto round = [](double x) { return static_cast<std::int64_t>(std::llround(x / 1e-5)); };
+  return LineKey{{round(direction.x), round(direction.y), round(direction.z), weld_cell(foot.x), weld_cell(foot.y),
+                  weld_cell(foot.z)}};
 }
 
 // Marks the edges of `group` (all on one line) that are really open: some
@@ -152,19 +216,36 @@ void mark_open(const std::vector<OpenEdge>& edges, const std::vector<std::size_t
     cuts.push_back(b);
   }
   std::sort(cuts.begin(), cuts.end());
-  // Elementary stretches between neighbouring cuts; cuts closer than the
-  // weld tolerance are one.
+  // Elementary stretches k between neighbouring cuts k and k + 1 (cuts
+  // closer than the weld tolerance are one). Each interval's endpoints are
+  // cuts, so it covers exactly the stretches from the first cut at its low
+  // end to the last cut at its high end: a difference array gives every
+  // stretch's net direction, and a prefix count of the unbalanced ones
+  // tells each interval whether it covers one, in O(n log n) for n edges
+  // on one line (a comb of 100,000 teeth puts them all on its spine).
   constexpr double kSame = 1e-4;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double lo = cuts[k], hi = cuts[k + 1];
-    if (hi - lo < kSame) continue;
-    const double mid = 0.5 * (lo + hi);
-    int net = 0;
-    for (const Interval& i : intervals)
-      if (i.lo < mid && mid < i.hi) net += i.sign;
-    if (net == 0) continue;
-    for (const Interval& i : intervals)
-      if (i.lo < mid && mid < i.hi) open[i.edge] = true;
+  const std::size_t stretches = cuts.size() - 1;
+  std::vector<int> net(stretches + 1, 0);
+  auto first_stretch = [&](const Interval& i) {
+    return static_cast<std::size_t>(std::lower_bound(cuts.begin(), cuts.end(), i.lo) - cuts.begin());
+  };
+  auto end_stretch = [&](const Interval& i) {  // one past the last stretch covered
+    return static_cast<std::size_t>(std::upper_bound(cuts.begin(), cuts.end(), i.hi) - cuts.begin()) - 1u;
+  };
+  for (const Interval& i : intervals) {
+    net[first_stretch(i)] += i.sign;
+    net[end_stretch(i)] -= i.sign;
+  }
+  std::vector<std::size_t> unbalanced_before(stretches + 1, 0);  // unbalanced stretches in [0, k)
+  int running = 0;
+  for (std::size_t k = 0; k < stretches; ++k) {
+    running += net[k];
+    const bool unbalanced = cuts[k + 1] - cuts[k] >= kSame && running != 0;
+    unbalanced_before[k + 1] = unbalanced_before[k] + (unbalanced ? 1u : 0u);
+  }
+  for (const Interval& i : intervals) {
+    const std::size_t from = first_stretch(i), to = end_stretch(i);
+    if (to > from && unbalanced_before[to] > unbalanced_before[from]) open[i.edge] = true;
   }
 }
 
