@@ -1,8 +1,9 @@
 // Diffraction at exposed edges (docs/model.md#diffraction): which edges are
-// exposed, single rays against hand-derived distributions, and both backends
-// on scenes where only diffraction can reach a place (a half-plane screen's
-// shadow, an L-shaped corridor's far leg) or where nothing may leak (a closed
-// room of touching slabs).
+// exposed (thin solids keep theirs, touching brushes bury theirs), single
+// rays against hand-derived distributions, and both backends on scenes where
+// only diffraction can reach a place (a half-plane screen's shadow, a thin
+// screen's, an L-shaped corridor's far leg) or where nothing may leak (a
+// closed room of touching slabs).
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -22,15 +23,22 @@
 #include "soundpaint/config.h"
 #include "sp_diffraction.h"
 #include "sp_ray_model.h"
+#include "support/brush_gltf.h"
+#include "support/exposed_edges.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
+#include "support/test_directory.h"
+#include "support/thin_screen.h"
 
 namespace sp {
 namespace {
 
 using test::add_box;
 using test::add_quad;
+using test::bits_at;
+using test::brush_bits;
+using test::level_world;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -149,6 +157,98 @@ TEST(DiffractionEdges, RefitFindsThemAgainWhenTheyAreKept) {
   // And back down: buried again.
   ASSERT_TRUE(refit_bvh(bvh, to_glm(scene.vertices)).ok());
   EXPECT_EQ(exposed_count(bvh.edges), before);
+}
+
+TEST(DiffractionEdges, AThinScreensOwnFacesNeverBuryItsEdges) {
+  // Closed boxes 1 and 2 cm thick: each edge's midpoint lies about t/2 from
+  // the other triangle of the narrow face it bounds (their diagonal runs
+  // through the face's centre), which buried every edge (issue 38). Faces
+  // of the edge's own solid no longer bury it.
+  for (float t : {0.01f, 0.02f}) {
+    SCOPED_TRACE(t);
+    Scene alone;
+    add_box(alone, {-2, 0, -0.5f * t}, {0, 2.5f, 0.5f * t}, "glass");
+    const World lone = level_world(alone);
+    EXPECT_EQ(exposed_count(lone.geometry->bvh.edges), 24);  // all 12 edges, as any box
+    for (const shader::TriangleEdges& e : lone.geometry->bvh.edges) {
+      for (int i = 0; i < 3; ++i) {
+        if ((e.exposed >> i) & 1u) {
+          EXPECT_NEAR(e.turn_sin[i], 1.0f, 1e-6f);
+        }
+      }
+    }
+
+    // Standing on a floor brush, before a back wall: the floor buries the
+    // screen's 4 bottom edges and nothing else of it.
+    const World level = level_world(test::thin_screen_level(t));
+    const Bvh& bvh = level.geometry->bvh;
+    EXPECT_EQ(brush_bits(bvh, 0), 24);  // the floor: the wall meets its rim 1.5 m from the rim's midpoint
+    EXPECT_EQ(brush_bits(bvh, 1), 16);  // the screen: 4 top and 4 upright edges
+    EXPECT_EQ(brush_bits(bvh, 2), 16);  // the wall: all but its 4 bottom edges
+    for (float z : {-0.5f * t, 0.5f * t}) {
+      EXPECT_EQ(bits_at(bvh, {0, 1.25f, z}), 2);   // the free upright edges
+      EXPECT_EQ(bits_at(bvh, {-2, 1.25f, z}), 2);  // and the far ones
+      EXPECT_EQ(bits_at(bvh, {-1, 2.5f, z}), 2);   // the top
+      EXPECT_EQ(bits_at(bvh, {-1, 0, z}), 0);      // the bottom, on the floor
+    }
+    EXPECT_EQ(bits_at(bvh, {0, 2.5f, 0}), 2);
+    EXPECT_EQ(bits_at(bvh, {0, 0, 0}), 0);
+  }
+}
+
+TEST(DiffractionEdges, TouchingBrushesStillBuryTheEdgesWhereTheyMeet) {
+  // All on one layer, as a level merged into one mesh: only the triangles'
+  // shared edges tell the brushes apart, and touching brushes share none.
+  Scene scene;
+  add_box(scene, {-5, -0.3f, -5}, {5, 0, 5}, "level");           // 0: a floor
+  add_box(scene, {-3, 0, -0.1f}, {3, 2.5f, 0.1f}, "level");      // 1: a wall standing on it
+  add_box(scene, {-0.5f, 0, -0.6f}, {0.5f, 1, -0.1f}, "level");  // 2: a block on both, flush with the wall
+  const World world = level_world(scene);
+  const Bvh& bvh = world.geometry->bvh;
+  EXPECT_EQ(brush_bits(bvh, 0), 24);
+  EXPECT_EQ(brush_bits(bvh, 1), 16);          // all but its 4 bottom edges
+  EXPECT_EQ(brush_bits(bvh, 2), 10);          // its top front and top side edges, its front uprights
+  EXPECT_EQ(bits_at(bvh, {0, 1, -0.1f}), 0);  // the block's back edges lie on the wall
+  EXPECT_EQ(bits_at(bvh, {0.5f, 0.5f, -0.1f}), 0);
+  EXPECT_EQ(bits_at(bvh, {0, 1, -0.6f}), 2);
+
+  // A 1 cm pane between two jambs, on the floor: the jambs bury its sides,
+  // though its own faces no longer do; only its top rim diffracts.
+  Scene frame;
+  add_box(frame, {-5, -0.3f, -5}, {5, 0, 5}, "level");
+  add_box(frame, {-1.1f, 0, -0.05f}, {-1, 2.2f, 0.05f}, "level");
+  add_box(frame, {1, 0, -0.05f}, {1.1f, 2.2f, 0.05f}, "level");
+  add_box(frame, {-1, 0, -0.005f}, {1, 2, 0.005f}, "level");
+  const World framed = level_world(frame);
+  const Bvh& pane = framed.geometry->bvh;
+  EXPECT_EQ(brush_bits(pane, 1), 16);  // a jamb: the pane's top lies 20 cm below its own
+  EXPECT_EQ(brush_bits(pane, 2), 16);
+  EXPECT_EQ(brush_bits(pane, 3), 4);
+  EXPECT_EQ(bits_at(pane, {0, 2, -0.005f}), 2);
+  EXPECT_EQ(bits_at(pane, {0, 2, 0.005f}), 2);
+}
+
+class DiffractionLevelFiles : public test::TestDirectory {};
+
+TEST_F(DiffractionLevelFiles, SolidsComeFromSharedEdgesHoweverTheLevelIsExported) {
+  // The thin-screen level written with a node per brush, and merged into
+  // one mesh on one layer: the loader keeps the triangles' order, and the
+  // same edges are exposed either way.
+  const Scene built = test::thin_screen_level(0.01f);
+  for (bool merged : {false, true}) {
+    SCOPED_TRACE(merged ? "merged" : "a node per brush");
+    const test::GltfBuilder file = merged ? test::gltf_merged(built) : test::gltf_node_per_brush(built);
+    const Scene loaded = load_scene(write("level.gltf", file.gltf())).value();
+    ASSERT_EQ(loaded.triangle_count(), built.triangle_count());
+    EXPECT_EQ(loaded.layer_names.size(), merged ? 1u : 3u);
+    const World world = level_world(loaded);
+    const Bvh& bvh = world.geometry->bvh;
+    EXPECT_EQ(brush_bits(bvh, 0), 24);
+    EXPECT_EQ(brush_bits(bvh, 1), 16);
+    EXPECT_EQ(brush_bits(bvh, 2), 16);
+    EXPECT_EQ(bits_at(bvh, {0, 1.25f, -0.005f}), 2);
+    EXPECT_EQ(bits_at(bvh, {0, 1.25f, 0.005f}), 2);
+  }
 }
 
 TEST(DiffractionModel, SinAndCosPolynomialsAreAccurateOnZeroToPi) {
@@ -376,6 +476,40 @@ TEST_P(DiffractionBackends, AClosedRoomOfTouchingSlabsLeaksNothing) {
     const float e = 1e-3f;  // positions on a face are a rounding off it
     EXPECT_TRUE(p.x >= -3 - e && p.x <= 3 + e && p.y >= -e && p.y <= 3 + e && p.z >= -2.5f - e && p.z <= 2.5f + e)
         << p.x << ", " << p.y << ", " << p.z;
+  }
+}
+
+TEST_P(DiffractionBackends, ThinScreensTurnRaysRoundTheirFreeEdgeIntoTheShadow) {
+  // support/thin_screen.h: the window on the back wall is out of the
+  // source's sight and reached only round the screen's free edge.
+  for (float thickness : {0.01f, 0.02f}) {
+    for (bool on : {false, true}) {
+      SCOPED_TRACE(testing::Message() << thickness << " m, diffraction " << on);
+      World world = make_world(test::thin_screen_level(thickness), test::thin_screen_config(on)).value();
+      const auto screen = static_cast<std::size_t>(
+          std::find(world.layer_names.begin(), world.layer_names.end(), "screen") - world.layer_names.begin());
+      auto sim = make_simulator(std::move(world), GetParam());
+      const test::Recorded out = test::run_steps(*sim, 2);
+      int shadow = 0, shadow_turned = 0, direct = 0;
+      for (const Indicator& ind : out.indicators) {
+        if (test::in_free_edge_shadow(ind)) {
+          ++shadow;
+          shadow_turned += ind.diffractions == 1u;
+        }
+        direct += test::in_direct_sight(ind) && ind.diffractions == 0u;
+      }
+      EXPECT_GT(direct, 20);  // the source reaches the wall past the screen, either way
+      ASSERT_LT(screen, out.stats.layers.size());
+      const std::uint64_t turns = out.stats.layers[screen].diffractions;
+      if (!on) {
+        EXPECT_EQ(shadow, 0);
+        EXPECT_EQ(turns, 0u);
+      } else {
+        EXPECT_GT(shadow, 20);
+        EXPECT_EQ(shadow_turned, shadow);  // every cue there came round the edge, once
+        EXPECT_GE(turns, std::uint64_t(shadow));
+      }
+    }
   }
 }
 

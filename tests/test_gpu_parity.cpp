@@ -17,6 +17,7 @@
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
+#include "support/thin_screen.h"
 
 namespace sp {
 namespace {
@@ -31,8 +32,10 @@ class GpuParity : public test::GpuTest {
   }
 
   void expect_parity(const Scene& scene, const Config& config, int steps) {
-    Trace cpu = run(scene, config, Backend::Cpu, steps);
-    Trace gpu = run(scene, config, Backend::Gpu, steps);
+    expect_parity(run(scene, config, Backend::Cpu, steps), run(scene, config, Backend::Gpu, steps));
+  }
+
+  void expect_parity(const Trace& cpu, const Trace& gpu) {
     ASSERT_GT(cpu.indicators.size(), 100u) << "scenario too small to compare";
     // kind too: a sheet's hit and exit share their ray and iteration.
     using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
@@ -44,7 +47,8 @@ class GpuParity : public test::GpuTest {
       if (it == by_key.end()) continue;
       const Indicator& g = *it->second;
       bool same = c.kind == g.kind && c.source_id == g.source_id && c.bounces == g.bounces &&
-                  c.penetrations == g.penetrations && std::abs(c.energy - g.energy) <= 1e-4f &&
+                  c.penetrations == g.penetrations && c.diffractions == g.diffractions &&
+                  std::abs(c.energy - g.energy) <= 1e-4f &&
                   glm::length(sp::to_glm(c.position) - sp::to_glm(g.position)) <= 1e-4f &&
                   std::abs(c.size - g.size) <= 1e-4f && c.intensity == g.intensity;
       identical += same;
@@ -76,6 +80,7 @@ class GpuParity : public test::GpuTest {
       EXPECT_NEAR(double(b.penetrations), double(a.penetrations), 0.001 * double(a.penetrations) + 1) << l;
       EXPECT_NEAR(double(b.backcast_misses), double(a.backcast_misses), 0.001 * double(a.backcast_misses) + 1) << l;
       EXPECT_NEAR(double(b.back_face_hits), double(a.back_face_hits), 0.001 * double(a.back_face_hits) + 1) << l;
+      EXPECT_NEAR(double(b.diffractions), double(a.diffractions), 0.001 * double(a.diffractions) + 1) << l;
     }
   }
 };
@@ -138,6 +143,32 @@ TEST_F(GpuParity, ManySourcesWithProximityWeighting) {
   config.ray_budget = 997;
   config.air_attenuation = 0.03f;
   expect_parity(scene, config, 6);
+}
+
+TEST_F(GpuParity, ThinScreensDiffractAtTheirFreeEdges) {
+  // A closed screen 1 or 2 cm thick (support/thin_screen.h): the GPU turns
+  // rays round its free edge into the shadow as the CPU does, ray for ray.
+  for (float thickness : {0.01f, 0.02f}) {
+    SCOPED_TRACE(thickness);
+    const Scene scene = test::thin_screen_level(thickness);
+    const Config config = test::thin_screen_config(true);
+    const Trace cpu = run(scene, config, Backend::Cpu, 2);
+    const Trace gpu = run(scene, config, Backend::Gpu, 2);
+    expect_parity(cpu, gpu);
+    std::size_t shadow[2] = {0, 0}, shadow_turned[2] = {0, 0};
+    for (const Trace* trace : {&cpu, &gpu}) {
+      for (const Indicator& ind : trace->indicators) {
+        if (!test::in_free_edge_shadow(ind)) continue;
+        shadow[trace == &gpu] += 1;
+        shadow_turned[trace == &gpu] += ind.diffractions == 1u;
+      }
+    }
+    EXPECT_GT(shadow[1], 20u);
+    EXPECT_EQ(shadow_turned[1], shadow[1]);  // reached round the edge only
+    EXPECT_NEAR(double(shadow[1]), double(shadow[0]), 0.01 * double(shadow[0]) + 1);
+    ASSERT_EQ(gpu.stats.layers.size(), 3u);
+    EXPECT_GT(gpu.stats.layers[1].diffractions, 0u);  // layer 1: the screen
+  }
 }
 
 TEST_F(GpuParity, BundledLevel) {
