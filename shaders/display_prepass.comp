@@ -27,8 +27,8 @@ bool shown(uint slot, out Indicator ind, out uint category) {
   ind = ring[slot];
   DisplaySource source = sources[ind.source_id];
   category = source.category;
-  float age = sp_indicator_age(push.current_step, ind.step, push.dt);
-  return age < push.lifetime && (source.shape_flags & SP_SOURCE_HIDDEN) == 0u;
+  return sp_indicator_live(push.current_step, ind.step, push.dt, push.lifetime) &&
+         (source.shape_flags & SP_SOURCE_HIDDEN) == 0u;
 }
 
 void main() {

@@ -93,7 +93,7 @@ void main() {
   opacity *= min(1.0, (age + push.dt) / SP_FADE_IN_SECONDS);
   bool direct = sp_is_direct(ind);
   opacity *= direct ? 1.0 : kIndirectOpacity;
-  bool live = age < push.lifetime;
+  bool live = sp_indicator_live(push.current_step, ind.step, push.dt, push.lifetime);
   if (live) opacity = max(opacity * push.opacity_scale, push.min_opacity);
   opacity = min(opacity, 1.0);
   bool hidden = (source.shape_flags & SP_SOURCE_HIDDEN) != 0u;

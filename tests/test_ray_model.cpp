@@ -1,11 +1,14 @@
 // The ray model against hand-derived values, one ray at a time: rays are
-// placed by hand and traced by the CPU backend's tracer.
+// placed by hand and traced by the CPU backend's tracer; and how long the
+// indicators they leave are live.
 #include <cmath>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "sim/indicator_ring.h"
+#include "sp_ring.h"
 #include "sp_types.h"
 #include "support/scene_builder.h"
 #include "support/single_ray.h"
@@ -158,6 +161,36 @@ TEST(RayModel, HitBelowThresholdLeavesNoIndicator) {
   auto indicators = f.trace({0, 0, 0}, {1, 0, 0}, counters);
   EXPECT_TRUE(indicators.empty());  // E == tau_min at the wall: dead, no indicator
   EXPECT_EQ(counters.layers[0].hits, 1u);
+}
+
+// The liveness rule, by hand: live while the age, whole steps times dt,
+// is below max(indicator_lifetime, 1/3 s); the same answer whether it is
+// given indicator_lifetime (live_indicators) or the display's lifetime
+// (the draw). In steps of 1/16 s (exact in binary), a 0.3 s spot lives 6
+// steps (ages 0 to 5/16 = 0.3125 s), not 5 as its own lifetime would have it.
+TEST(Liveness, OneRuleForLiveAndDrawn) {
+  EXPECT_EQ(shader::sp_display_lifetime(0.3f), 1.0f / 3.0f);
+  EXPECT_EQ(shader::sp_display_lifetime(1.0f / 3.0f), 1.0f / 3.0f);
+  EXPECT_EQ(shader::sp_display_lifetime(1.0f), 1.0f);
+  const float dt = 1.0f / 16.0f;
+  for (float lifetime : {0.3f, shader::sp_display_lifetime(0.3f)}) {
+    EXPECT_TRUE(shader::sp_indicator_live(100u, 100u, dt, lifetime));
+    EXPECT_TRUE(shader::sp_indicator_live(105u, 100u, dt, lifetime));   // 0.3125 s
+    EXPECT_FALSE(shader::sp_indicator_live(106u, 100u, dt, lifetime));  // 0.375 s
+  }
+  // Above the minimum, indicator_lifetime itself; an age equal to it is over.
+  EXPECT_TRUE(shader::sp_indicator_live(15u, 0u, dt, 1.0f));   // 0.9375 s
+  EXPECT_FALSE(shader::sp_indicator_live(16u, 0u, dt, 1.0f));  // 1 s
+  // At 60 steps a second, 20 steps: 20 * float(1/60) rounds to float(1/3).
+  EXPECT_TRUE(shader::sp_indicator_live(19u, 0u, 1.0f / 60.0f, 0.1f));
+  EXPECT_FALSE(shader::sp_indicator_live(20u, 0u, 1.0f / 60.0f, 0.1f));
+  // The host's form: after `steps_run` steps, the last one is shown.
+  Config config;
+  config.dt = 1.0 / 16.0;
+  config.indicator_lifetime = 0.3f;
+  EXPECT_FALSE(is_live(0u, 0u, config));  // nothing before the first step
+  EXPECT_TRUE(is_live(0u, 6u, config));
+  EXPECT_FALSE(is_live(0u, 7u, config));
 }
 
 }  // namespace

@@ -135,6 +135,29 @@ TEST_P(RenderBothBackends, WithoutRaysNoPixelHasAnIndicatorColour) {
   EXPECT_GT(test::count_pixels(lit.image, test::is_saturated), 200u);  // the check can see indicators
 }
 
+// One burst of the red source, at step 0, in steps of 1/16 s (exact in
+// binary), of 0.3 s spots: the display shows them for its minimum lifetime,
+// 1/3 s (SP_MIN_DISPLAY_LIFETIME). After 6 steps they are 5/16 = 0.3125 s
+// old, inside it: drawn, and live; after 7, 0.375 s: neither. At full
+// opacity while live, so that a faded spot cannot hide the answer.
+TEST_P(RenderBothBackends, ASpotIsDrawnExactlyWhileItIsLive) {
+  Scene scene = open_yard();
+  scene.sources.resize(1);
+  scene.sources[0].duration = 0.01;
+  scene.sources[0].interval = 1000.0;
+  Config config = yard_config(400);
+  config.dt = 1.0 / 16.0;
+  config.indicator_lifetime = 0.3f;
+  config.display.min_opacity = 1.0f;
+  const Picture inside = render(scene, config, GetParam(), 6, size(160, 120, false), above_the_yard());
+  EXPECT_FALSE(inside.live.empty()) << "drawn at 0.3125 s, so live";
+  for (const Indicator& ind : inside.live) EXPECT_EQ(ind.step, 0u);
+  EXPECT_GT(test::count_pixels(inside.image, test::is_saturated), 50u) << "live at 0.3125 s, so drawn";
+  const Picture after = render(scene, config, GetParam(), 7, size(160, 120, false), above_the_yard());
+  EXPECT_TRUE(after.live.empty()) << "past the display's lifetime at 0.375 s";
+  EXPECT_EQ(test::count_pixels(after.image, test::is_saturated), 0u) << "past the display's lifetime at 0.375 s";
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, RenderBothBackends, ::testing::Values(Backend::Cpu, Backend::Gpu),
                          [](const auto& param_info) {
                            return std::string(param_info.param == Backend::Cpu ? "Cpu" : "Gpu");

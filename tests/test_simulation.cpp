@@ -6,10 +6,12 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "sim/cpu_ring.h"
 #include "sim/cpu_step_runner.h"
 #include "sim/indicator_ring.h"
 #include "sim/step_plan.h"
@@ -179,26 +181,62 @@ TEST(Random, DecisionsAreUniformAndKeyedByAllInputs) {
 }
 
 TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
-  IndicatorRing ring(4);
+  Config config;
+  config.max_indicators = 4;
+  config.dt = 1.0;
+  config.indicator_lifetime = 10.0f;
+  IndicatorRing ring(config);
   std::vector<shader::Indicator> batch(6);
   for (std::uint32_t k = 0; k < 6; ++k) {
     batch[k].step = k;
     batch[k].ray_index = k;
   }
-  ring.push(std::span(batch).first(3));
-  ring.push(std::span(batch).subspan(3));
-  EXPECT_EQ(ring.total_pushed(), 6u);
-  auto live = ring.live(5, 1.0, 10.0);
+  ring.place(std::span(batch).first(3));
+  ring.place(std::span(batch).subspan(3));
+  EXPECT_EQ(ring.writer().written(), 6u);
+  auto live = ring.live(6, config);  // step 5 shown
   ASSERT_EQ(live.size(), 4u);
   EXPECT_EQ(live.front().ray_index, 2u);  // oldest surviving first
   EXPECT_EQ(live.back().ray_index, 5u);
   // dt 1 s, lifetime 2.5 s at step 5: ages 3,2,1,0 -> steps 3,4,5 live
-  EXPECT_EQ(ring.live(5, 1.0, 2.5).size(), 3u);
-  IndicatorRing small(2);
-  small.push(batch);  // more than capacity at once
-  auto kept = small.live(5, 1.0, 100.0);
+  config.indicator_lifetime = 2.5f;
+  EXPECT_EQ(ring.live(6, config).size(), 3u);
+  EXPECT_TRUE(ring.live(0, config).empty());  // before the first step
+  config.max_indicators = 2;
+  config.indicator_lifetime = 100.0f;
+  IndicatorRing small(config);
+  small.place(batch);  // more than capacity at once
+  auto kept = small.live(6, config);
   ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[0].ray_index, 4u);
+}
+
+// The one writer lays each step after the last, in runs of slots that
+// never wrap: what the CPU visualizer uploads and the simulator copies.
+TEST(IndicatorRing, WriterLaysRunsThatWrapAtTheCapacity) {
+  Config config;
+  config.max_indicators = 5;
+  RingWriter writer(config);
+  std::vector<shader::Indicator> batch(12);
+  for (std::uint32_t k = 0; k < 12; ++k) batch[k].ray_index = k;
+  std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> runs;
+  auto record = [&](std::uint32_t slot, std::span<const shader::Indicator> run) {
+    std::vector<std::uint32_t> rays;
+    for (const shader::Indicator& ind : run) rays.push_back(ind.ray_index);
+    runs.emplace_back(slot, rays);
+  };
+  using Runs = decltype(runs);
+  writer.place(std::span(batch).first(3), record);
+  EXPECT_EQ(runs, (Runs{{0u, {0, 1, 2}}}));
+  runs.clear();
+  writer.place(std::span(batch).subspan(3, 4), record);
+  EXPECT_EQ(runs, (Runs{{3u, {3, 4}}, {0u, {5, 6}}}));
+  EXPECT_EQ(writer.written(), 7u);
+  EXPECT_EQ(writer.filled(), 5u);
+  runs.clear();
+  writer.place(std::span(batch).subspan(0, 8), record);  // more than the ring: the newest 5, from slot 10 % 5
+  EXPECT_EQ(runs, (Runs{{0u, {3, 4, 5, 6, 7}}}));
+  EXPECT_EQ(writer.written(), 15u);
 }
 
 shader::Indicator spot(std::uint32_t ray, float size, bool direct) {
@@ -349,6 +387,37 @@ TEST(Simulation, RingBufferHoldsAtMostMaxIndicators) {
   for (auto [step, count] : per_step) {
     EXPECT_GE(step, 3u) << "older than the lifetime";
     EXPECT_LE(count, 12u) << "step " << step << " admitted more than its quota";
+  }
+}
+
+// A burst at step 0 only, in steps of 1/16 s (exact in binary): its spots
+// are (now - 0) / 16 s old at step `now`.
+Config burst_config(float lifetime) {
+  Config config = quiet_config();
+  config.dt = 1.0 / 16.0;
+  config.indicator_lifetime = lifetime;
+  return config;
+}
+Scene burst_room() {
+  Scene scene = closed_room();
+  scene.sources[0].duration = 0.01;
+  scene.sources[0].interval = 1000.0;
+  return scene;
+}
+
+// What live_indicators() returns is what the display draws: a spot lives
+// for the display's lifetime, max(indicator_lifetime, 1/3 s), the flash
+// limit (sp_indicator_live). A 0.3 s spot is live at 5/16 = 0.3125 s, as it
+// is drawn, and neither at 6/16 = 0.375 s; a 1 s spot, at 15/16 s and not at 1 s.
+TEST(Simulation, LiveIndicatorsAreThoseTheDisplayDraws) {
+  for (const auto& [lifetime, last_live_step] : {std::pair{0.3f, 5u}, std::pair{1.0f, 15u}}) {
+    auto sim = create_cpu_simulator(make_world(burst_room(), burst_config(lifetime)).value()).value();
+    for (std::uint32_t n = 0; n <= last_live_step; ++n) ASSERT_TRUE(sim->step().ok());
+    const std::vector<Indicator> live = sim->live_indicators().value();
+    EXPECT_FALSE(live.empty()) << "lifetime " << lifetime << ": the burst is " << last_live_step << "/16 s old";
+    for (const Indicator& ind : live) EXPECT_EQ(ind.step, 0u);
+    ASSERT_TRUE(sim->step().ok());
+    EXPECT_TRUE(sim->live_indicators()->empty()) << "lifetime " << lifetime << ": past the display's lifetime";
   }
 }
 

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -68,11 +69,11 @@ class Host : public test::GpuTest {
     camera_ = draw::make_view_camera(std::nullopt, mirror_room(), {}, kWidth, kHeight);
   }
 
-  std::unique_ptr<Visualizer> visualizer(BackendChoice backend) {
+  std::unique_ptr<Visualizer> visualizer(BackendChoice backend, World world = mirror_room()) {
     VisualizerSettings settings;
     settings.backend = backend;
     settings.cpu.threads = 2;
-    return Visualizer::create(host_of(*context_), target_formats(), mirror_room(), settings).value();
+    return Visualizer::create(host_of(*context_), target_formats(), std::move(world), settings).value();
   }
 
   VkCommandBuffer begin() { return commands_->begin(); }
@@ -175,6 +176,43 @@ TEST_F(Host, GpuAndCpuBackendsDrawTheSamePicture) {
   // sqrt round as each device likes, test_gpu_parity.cpp), which changes a
   // spot or two, each at least 16 px across: up to 2 % of the pixels.
   EXPECT_LT(test::differing_pixels(gpu_image, cpu_image, 8, nullptr), kWidth * kHeight / 50);
+}
+
+// mirror_room's source in one burst, at step 0, in steps of 1/16 s (exact
+// in binary), of 0.3 s spots drawn at full opacity while live: the display
+// shows them for its minimum lifetime, 1/3 s (SP_MIN_DISPLAY_LIFETIME).
+World burst_room() {
+  Scene scene = test::closed_room();
+  scene.sources[0].duration = 0.01;
+  scene.sources[0].interval = 1000.0;
+  Config config = mirror_room().config;
+  config.ray_budget = 600;
+  config.dt = 1.0 / 16.0;
+  config.indicator_lifetime = 0.3f;
+  config.display.min_opacity = 1.0f;
+  return make_world(scene, config).value();
+}
+
+// Both visualizers draw a spot while it is live (sp_indicator_live), as
+// live_indicators() returns it: 5/16 = 0.3125 s after the burst, and no
+// longer 0.375 s after it.
+TEST_F(Host, ASpotIsDrawnForTheDisplaysLifetimeThenNot) {
+  for (BackendChoice choice : {BackendChoice::Cpu, BackendChoice::Gpu}) {
+    auto vis = visualizer(choice, burst_room());
+    const double dt = vis->scene().world().config.dt;
+    draw::RgbaImage image;
+    // The CPU backend hands a step over one frame after starting it.
+    for (int n = 0; n < 10 && vis->steps_run() < 6; ++n) {
+      ASSERT_TRUE(vis->wait_for_simulation().ok());
+      image = frame(*vis, dt);
+    }
+    ASSERT_EQ(vis->steps_run(), 6u);
+    EXPECT_GT(coloured_pixels(image), 50u) << "the burst is 0.3125 s old: live and drawn";
+    ASSERT_TRUE(vis->wait_for_simulation().ok());
+    image = frame(*vis, dt);
+    ASSERT_EQ(vis->steps_run(), 7u);
+    EXPECT_EQ(coloured_pixels(image), 0u) << "the burst is 0.375 s old: past the display's lifetime";
+  }
 }
 
 // record_totals: what a host's panel shows. The totals after some frames

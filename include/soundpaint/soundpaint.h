@@ -320,8 +320,10 @@ sp_result sp_simulation_step(sp_simulation* simulation) SP_NOEXCEPT;
  * (sp_sound_scene_has_source tells which are live). Any thread. */
 sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* out) SP_NOEXCEPT;
 
-/* The indicators still visible (younger than indicator_lifetime), oldest
- * first. *count (non-NULL) receives how many exist; min(*count, capacity)
+/* The indicators still live, oldest first: exactly those the display draws
+ * (a hidden, capped, back-facing or too faint spot aside), younger than the
+ * display lifetime, max(indicator_lifetime, 1/3 s), counted in whole steps
+ * from the last step run. *count (non-NULL) receives how many exist; min(*count, capacity)
  * are written to out. out may be NULL only when capacity == 0 (size query).
  * Calling twice between steps gives the same list. Render thread.
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not-live simulation, NULL

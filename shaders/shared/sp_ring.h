@@ -1,5 +1,6 @@
 // The indicator ring's rules, shared by GLSL and C++: how old an indicator
-// is, how opaque, and which of a step's indicators the ring admits
+// is, whether it is live (drawn, and returned by live_indicators), how
+// opaque, and which of a step's indicators the ring admits
 // (docs/model.md#the-ring-spots-that-live-out-their-lifetime).
 //
 // A step makes far more indicators than the ring can show for a whole lifetime:
@@ -19,9 +20,10 @@
 #include "sp_types.h"
 
 // The display never shows a spot for less than this (seconds), whatever
-// indicator_lifetime says: each spot then brightens and fades at most once
-// per 1/3 s, under the three-flashes-per-second limit of WCAG 2.3.1. The
-// ring's quota counts with it, so a spot is not overwritten before.
+// indicator_lifetime says, and the spot is live as long: each spot then
+// brightens and fades at most once per 1/3 s, under the
+// three-flashes-per-second limit of WCAG 2.3.1. The ring's quota counts
+// with it, so a spot is not overwritten before.
 #define SP_MIN_DISPLAY_LIFETIME (1.0f / 3.0f)
 
 // Admission sorts a step's indicators into three classes, each with its
@@ -38,10 +40,31 @@
 
 SP_BEGIN_NAMESPACE
 
-// Age of an indicator born at step `birth`, seen at step `now`, in seconds.
+// Age of an indicator born at step `birth`, seen at step `now` (the last
+// step run: the draw shows whole steps, not the time between them), in
+// seconds.
 SP_INLINE float sp_indicator_age(uint now, uint birth, float dt) {
   uint steps = now >= birth ? now - birth : 0u;
-  return float(steps) * dt;
+  SP_PRECISE float age = float(steps) * dt;
+  return age;
+}
+
+// How long the display shows a spot of `indicator_lifetime` seconds, and
+// how long it is live: never under SP_MIN_DISPLAY_LIFETIME. Given a display
+// lifetime, returns it unchanged.
+SP_INLINE float sp_display_lifetime(float indicator_lifetime) {
+  return max(indicator_lifetime, SP_MIN_DISPLAY_LIFETIME);
+}
+
+// The one liveness rule (docs/model.md#the-ring-spots-that-live-out-their-lifetime):
+// whether an indicator born at step `birth` is live at step `now`, its age
+// below the display lifetime. The draw shows a slot only while this holds
+// (and the spot is not hidden, capped, faced away or too faint to see), and
+// live_indicators() returns exactly the slots for which it holds, so that
+// what is live is what is drawn. `lifetime` may be indicator_lifetime or
+// the display lifetime: the answer is the same.
+SP_INLINE bool sp_indicator_live(uint now, uint birth, float dt, float lifetime) {
+  return sp_indicator_age(now, birth, dt) < sp_display_lifetime(lifetime);
 }
 
 // Opacity at age a is I * max(0, 1 - a / lifetime) (docs/model.md#indicators).

@@ -24,7 +24,8 @@ DrawView DrawView::from(const glm::mat4& view, const glm::mat4& projection, glm:
 DisplayFrame DisplayFrame::from(const World& world, std::uint64_t steps_run, const DisplaySettings& settings,
                                 bool arrows_by_default) {
   DisplayFrame frame;
-  frame.current_step = steps_run > 0 ? static_cast<std::uint32_t>(steps_run - 1) : 0u;
+  // The step and lifetime with which live_indicators() decides (is_live).
+  frame.current_step = shown_step(steps_run);
   frame.dt = static_cast<float>(world.config.dt);
   frame.lifetime = display_lifetime(world.config);
   frame.inv_indicator_size = inverse_indicator_size(world.config);

@@ -32,9 +32,9 @@ struct DrawView {
 };
 
 struct DisplayFrame {
-  std::uint32_t current_step = 0;    // the last step run: ages count from it
+  std::uint32_t current_step = 0;    // the last step run: ages count from it (shown_step())
   float dt = 1.0f / 60.0f;           // seconds per step
-  float lifetime = 1.0f;             // the display's lifetime (display_lifetime())
+  float lifetime = 1.0f;             // the display's lifetime (display_lifetime()): sp_indicator_live decides
   float inv_indicator_size = 0.0f;   // 1 / indicator_size, 0 when it is 0
   std::uint32_t source_count = 0;    // entries of the source table
   std::uint32_t category_count = 0;  // categories the world numbers

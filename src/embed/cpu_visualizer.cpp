@@ -6,8 +6,8 @@
 
 #include "embed/cpu_step_thread.h"
 #include "embed/visualizers.h"
+#include "sim/cpu_ring.h"
 #include "sim/embree_traversal.h"
-#include "sim/indicator_ring.h"
 #include "sim/sound_scene_backend.h"
 #include "sim/world_geometry.h"
 #include "sp_draw_types.h"
@@ -23,9 +23,9 @@ class CpuVisualizer final : public VisualizerBase {
                 const VisualizerSettings& settings, bool simulation_on_graphics_queue)
       : VisualizerBase(std::move(context), target, std::move(world), settings, simulation_on_graphics_queue),
         max_steps_(settings.max_steps_per_frame),
-        capacity_(scene_.world().config.max_indicators),
+        writer_(scene_.world().config),
         layer_table_(make_layer_table(scene_.world())),
-        ring_(*context_, VkDeviceSize{capacity_} * sizeof(Indicator),
+        ring_(*context_, VkDeviceSize{writer_.capacity()} * sizeof(Indicator),
               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
               "cpu indicator ring"),
         draw_args_(*context_, sizeof(VkDrawIndirectCommand),
@@ -69,7 +69,7 @@ class CpuVisualizer final : public VisualizerBase {
         totals_.casts += finished->counters.casts;
         totals_.indicators += finished->indicator_count();
         totals_.rays_emitted += running_rays_;
-        upload_step(cmd, finished->admitted(ring_quota_, inverse_indicator_size_));
+        upload_step(cmd, *finished);
         worker_.release();
         steps_run_ = running_step_ + 1;
         handed = 1;
@@ -100,7 +100,7 @@ class CpuVisualizer final : public VisualizerBase {
     // The host knows them: the steps handed over so far.
     SimulationTotals totals = totals_;
     totals.steps = steps_run_;
-    totals.ring_filled = std::min<std::uint64_t>(pushed_, capacity_);
+    totals.ring_filled = writer_.filled();
     vkCmdUpdateBuffer(cmd, destination, offset, sizeof totals, &totals);
     // Device -> host: the update is visible to host reads after the fence.
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -113,7 +113,7 @@ class CpuVisualizer final : public VisualizerBase {
     gpu::IndicatorView view;
     view.context = context_.get();
     view.ring = ring_.get();
-    view.ring_capacity = capacity_;
+    view.ring_capacity = writer_.capacity();
     view.draw_args = draw_args_.get();
     return view;
   }
@@ -130,45 +130,35 @@ class CpuVisualizer final : public VisualizerBase {
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
     worker_.start(bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_),
-                  inverse_indicator_size_, embree_.get());
+                  writer_.inverse_indicator_size(), embree_.get());
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
   }
 
-  // Appends a step's admitted indicators to the ring as IndicatorRing does
-  // (the oldest overwritten), uploading only the slots that changed.
-  void upload_step(VkCommandBuffer cmd, std::span<const shader::Indicator> indicators) {
-    if (indicators.size() > capacity_) indicators = indicators.last(capacity_);
-    std::size_t done = 0;
-    while (done < indicators.size()) {
-      const std::uint64_t slot = (pushed_ + done) % capacity_;
-      const std::size_t run = std::min<std::size_t>(indicators.size() - done, capacity_ - slot);
-      vk::record_update(cmd, ring_, slot * sizeof(shader::Indicator), &indicators[done],
-                        run * sizeof(shader::Indicator));
-      done += run;
-    }
-    pushed_ += indicators.size();
+  // The ring's one writer admits and places the step's indicators; only
+  // the slots it writes are uploaded.
+  void upload_step(VkCommandBuffer cmd, const CpuStepOutput& step) {
+    writer_.write(step, [&](std::uint32_t slot, std::span<const shader::Indicator> run) {
+      vk::record_update(cmd, ring_, VkDeviceSize{slot} * sizeof(shader::Indicator), run.data(), run.size_bytes());
+    });
     upload_draw_args(cmd);
   }
 
   void upload_draw_args(VkCommandBuffer cmd) {
     VkDrawIndirectCommand command{};
     command.vertexCount = SP_INDICATOR_QUAD_VERTICES;
-    command.instanceCount = static_cast<std::uint32_t>(std::min<std::uint64_t>(pushed_, capacity_));
+    command.instanceCount = writer_.filled();
     vk::record_update(cmd, draw_args_, 0, &command, sizeof command);
   }
 
   std::uint32_t max_steps_;
-  std::uint32_t capacity_;
-  std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
-  float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
+  RingWriter writer_;  // admits and places each step's indicators in ring_
   std::vector<shader::LayerAcoustics> layer_table_;
   vk::Buffer ring_;
   vk::Buffer draw_args_;
   std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   CpuStepThread worker_;                     // after what its running step reads
-  std::uint64_t pushed_ = 0;                 // indicators ever appended to the ring
   SimulationTotals totals_;                  // casts, rays and indicators of the steps handed over
   std::uint32_t running_rays_ = 0;           // rays of the step the worker runs
   std::uint64_t steps_run_ = 0;              // steps handed over

@@ -12,9 +12,9 @@
 
 #include "gpu/gpu_resources.h"
 #include "gpu/step_engine.h"
+#include "sim/indicator_ring.h"
 #include "sim/memory_estimate.h"
 #include "sim/step_plan.h"
-#include "sp_ring.h"
 #include "vk/handle.h"
 #include "vk/objects.h"
 #include "vk/vk_check.h"
@@ -95,14 +95,8 @@ class GpuSimulator final : public Simulator {
           if (!stored.empty())
             vk::download(context_, resources_.ring, stored.data(), stored.size() * sizeof(Indicator));
           std::vector<Indicator> live;
-          if (steps_run_ == 0) return live;
-          const Config& config = scene_.world().config;
-          const auto now = static_cast<std::uint32_t>(steps_run_ - 1);
-          for (const Indicator& ind : stored) {
-            // The draw's age and rule (sp_ring.h): what is live is what is drawn.
-            if (shader::sp_indicator_age(now, ind.step, static_cast<float>(config.dt)) < config.indicator_lifetime)
-              live.push_back(ind);
-          }
+          for (const Indicator& ind : stored)
+            if (is_live(ind.step, steps_run_, scene_.world().config)) live.push_back(ind);
           sort_canonically(live);
           return live;
         },

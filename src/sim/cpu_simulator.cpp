@@ -6,10 +6,10 @@
 #include <string>
 
 #include "bvh/bvh.h"
+#include "sim/cpu_ring.h"
 #include "sim/cpu_step_runner.h"
 #include "sim/embree_traversal.h"
 #include "sim/indicator_convert.h"
-#include "sim/indicator_ring.h"
 #include "sim/memory_estimate.h"
 #include "sim/sound_scene_backend.h"
 #include "sim/step_plan.h"
@@ -23,7 +23,7 @@ class CpuSimulator final : public Simulator {
   CpuSimulator(World world, const CpuSettings& settings)
       : scene_(std::move(world)),
         runner_(settings.threads, scene_.world().layer_names.size()),
-        ring_(scene_.world().config.max_indicators),
+        ring_(scene_.world().config),
         layer_table_(make_layer_table(scene_.world())),
         embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, settings.threads)) {
     totals_.layers.resize(scene_.world().layer_names.size());
@@ -61,9 +61,7 @@ class CpuSimulator final : public Simulator {
   }
 
   Result<std::vector<Indicator>> live_indicators() override {
-    if (steps_run_ == 0) return std::vector<Indicator>{};
-    const Config& config = scene_.world().config;
-    return to_public(ring_.live(steps_run_ - 1, config.dt, config.indicator_lifetime));
+    return to_public(ring_.live(steps_run_, scene_.world().config));
   }
 
   Result<SimulationStats> stats() override { return totals_; }
@@ -76,9 +74,9 @@ class CpuSimulator final : public Simulator {
       const Bvh& bvh = scene_.world().geometry->bvh;
       if (embree_) embree_->update(changes);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
-      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step), inverse_indicator_size_,
-                  last_, embree_.get());
-      ring_.push(last_.admitted(ring_quota_, inverse_indicator_size_));
+      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step),
+                  ring_.writer().inverse_indicator_size(), last_, embree_.get());
+      ring_.write(last_);
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
       totals_.steps += 1;
@@ -94,8 +92,6 @@ class CpuSimulator final : public Simulator {
   SoundScene scene_;
   CpuStepRunner runner_;
   IndicatorRing ring_;
-  std::uint32_t ring_quota_ = ring_quota(scene_.world().config);
-  float inverse_indicator_size_ = inverse_indicator_size(scene_.world().config);
   std::vector<shader::LayerAcoustics> layer_table_;
   std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   StepPlan plan_;

@@ -5,7 +5,7 @@
 
 namespace sp {
 
-float display_lifetime(const Config& config) { return std::max(config.indicator_lifetime, SP_MIN_DISPLAY_LIFETIME); }
+float display_lifetime(const Config& config) { return shader::sp_display_lifetime(config.indicator_lifetime); }
 
 std::uint32_t ring_quota(const Config& config) {
   const double per_lifetime = static_cast<double>(display_lifetime(config)) / config.dt;
@@ -29,31 +29,6 @@ std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, st
   for (const shader::Indicator& ind : step)
     if (plan.admits(ind)) admitted.push_back(ind);
   return admitted;
-}
-
-void IndicatorRing::push(std::span<const shader::Indicator> indicators) {
-  const std::uint64_t capacity = slots_.size();
-  if (indicators.size() > capacity) {
-    total_ += indicators.size() - capacity;
-    indicators = indicators.last(capacity);
-  }
-  for (const shader::Indicator& indicator : indicators) {
-    slots_[total_ % capacity] = indicator;
-    ++total_;
-  }
-}
-
-std::vector<shader::Indicator> IndicatorRing::live(std::uint64_t now, double dt, double lifetime) const {
-  const std::uint64_t capacity = slots_.size();
-  const std::uint64_t stored = std::min(total_, capacity);
-  std::vector<shader::Indicator> result;
-  for (std::uint64_t k = total_ - stored; k < total_; ++k) {
-    const shader::Indicator& indicator = slots_[k % capacity];
-    // The draw's age and rule (sp_ring.h): what is live is what is drawn.
-    const float age = shader::sp_indicator_age(static_cast<std::uint32_t>(now), indicator.step, static_cast<float>(dt));
-    if (age < static_cast<float>(lifetime)) result.push_back(indicator);
-  }
-  return result;
 }
 
 }  // namespace sp

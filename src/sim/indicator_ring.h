@@ -1,8 +1,8 @@
-// The indicator ring and its admission rule (shaders/shared/sp_ring.h,
-// docs/model.md#the-ring-spots-that-live-out-their-lifetime): each step admits
-// at most its quota of the step's indicators, the most informative first, so
-// that admitted spots live out their lifetime; the oldest slots are
-// overwritten.
+// The indicator ring's rules (shaders/shared/sp_ring.h,
+// docs/model.md#the-ring-spots-that-live-out-their-lifetime): how long a spot
+// is live and drawn, and which of a step's indicators the ring admits: at
+// most its quota, the most informative first, so that admitted spots live
+// out their lifetime. The CPU backend's ring and writer are in cpu_ring.h.
 #pragma once
 
 #include <algorithm>
@@ -18,9 +18,24 @@
 
 namespace sp {
 
-// How long the display shows a spot: indicator_lifetime, but never under
-// SP_MIN_DISPLAY_LIFETIME (sp_ring.h).
+// How long the display shows a spot, and how long it is live:
+// indicator_lifetime, but never under SP_MIN_DISPLAY_LIFETIME
+// (sp_display_lifetime).
 float display_lifetime(const Config& config);
+
+// The step whose picture the display shows, and from which ages count,
+// after `steps_run` steps: the last one run.
+inline std::uint32_t shown_step(std::uint64_t steps_run) {
+  return steps_run > 0 ? static_cast<std::uint32_t>(steps_run - 1) : 0u;
+}
+
+// Whether an indicator of step `birth` is live after `steps_run` steps: the
+// draw's rule, sp_indicator_live, with the draw's step, dt and lifetime.
+// Nothing is live before the first step.
+inline bool is_live(std::uint32_t birth, std::uint64_t steps_run, const Config& config) {
+  return steps_run > 0 && shader::sp_indicator_live(shown_step(steps_run), birth, static_cast<float>(config.dt),
+                                                    config.indicator_lifetime);
+}
 
 // How many of a step's indicators the ring admits: ceil(capacity * dt /
 // display lifetime), in [1, capacity], so that the ring turns over once per
@@ -103,24 +118,5 @@ class AdmissionPlan {
 // keeps them within `quota` (sp_admission_threshold).
 std::vector<shader::Indicator> admit(std::span<const shader::Indicator> step, std::uint32_t quota,
                                      float inverse_indicator_size);
-
-class IndicatorRing {
- public:
-  explicit IndicatorRing(std::uint32_t capacity) : slots_(capacity) {}
-
-  // Appends in order; when more than capacity arrive, only the newest stay.
-  void push(std::span<const shader::Indicator> indicators);
-
-  // Indicators still visible at step `now`: age (now - birth) * dt below
-  // `lifetime`, oldest first.
-  std::vector<shader::Indicator> live(std::uint64_t now, double dt, double lifetime) const;
-
-  std::uint64_t total_pushed() const { return total_; }
-  std::uint32_t capacity() const { return static_cast<std::uint32_t>(slots_.size()); }
-
- private:
-  std::vector<shader::Indicator> slots_;
-  std::uint64_t total_ = 0;  // slot of the next push is total_ % capacity
-};
 
 }  // namespace sp

@@ -1,0 +1,95 @@
+// The CPU backend's indicator ring and its one writer. The CPU simulator
+// keeps the ring on the host (IndicatorRing); the CPU visualizer keeps it
+// on its device and uploads what the writer lays (RingWriter). Both admit
+// and place a step's indicators through RingWriter alone, as the GPU
+// backend does in admit.comp; which slots are live, sp_indicator_live
+// decides (is_live on the host, the draw's shaders on the device).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sim/cpu_step_runner.h"
+#include "sim/indicator_ring.h"
+#include "soundpaint/simulation.h"
+#include "sp_types.h"
+
+namespace sp {
+
+// Admits each step's indicators under the ring's quota (AdmissionPlan,
+// sp_admission.h) and lays them in the slots after the last step's, the
+// oldest overwritten. Where the slots live is the caller's: `store(slot,
+// run)` copies `run` (a std::span<const shader::Indicator>) into slots
+// [slot, slot + run.size()), which never wrap.
+class RingWriter {
+ public:
+  // A ring of config.max_indicators slots, with its quota and bins.
+  explicit RingWriter(const Config& config);
+
+  // Admits `step`'s indicators and lays them. Admission comes first: when
+  // it fails (out of memory), the ring is as it was.
+  template <class Store>
+  void write(const CpuStepOutput& step, Store&& store) {
+    const std::vector<shader::Indicator> admitted = step.admitted(quota_, inverse_indicator_size_);
+    place(admitted, store);
+  }
+
+  // Lays `indicators`, already admitted, in order; when more than the
+  // capacity arrive, only the newest.
+  template <class Store>
+  void place(std::span<const shader::Indicator> indicators, Store&& store) {
+    if (indicators.size() > capacity_) {
+      written_ += indicators.size() - capacity_;
+      indicators = indicators.last(capacity_);
+    }
+    for (std::size_t done = 0; done < indicators.size();) {
+      const auto slot = static_cast<std::uint32_t>((written_ + done) % capacity_);
+      const std::size_t run = std::min<std::size_t>(indicators.size() - done, capacity_ - slot);
+      store(slot, indicators.subspan(done, run));
+      done += run;
+    }
+    written_ += indicators.size();
+  }
+
+  std::uint32_t capacity() const { return capacity_; }
+  // Indicators ever laid; the next goes to slot written() % capacity().
+  std::uint64_t written() const { return written_; }
+  // Slots holding an indicator: the oldest is in slot written() - filled().
+  std::uint32_t filled() const { return static_cast<std::uint32_t>(std::min<std::uint64_t>(written_, capacity_)); }
+  // 1 / indicator_size, with which admission bins: a step runner that bins
+  // its indicators as it traces (CpuStepRunner::run) must use this one.
+  float inverse_indicator_size() const { return inverse_indicator_size_; }
+
+ private:
+  std::uint32_t capacity_;
+  std::uint32_t quota_;
+  float inverse_indicator_size_;
+  std::uint64_t written_ = 0;
+};
+
+// The ring on the host, for the CPU simulator.
+class IndicatorRing {
+ public:
+  explicit IndicatorRing(const Config& config) : writer_(config), slots_(writer_.capacity()) {}
+
+  // Admits and lays a step's indicators (RingWriter::write).
+  void write(const CpuStepOutput& step);
+  // Lays indicators already admitted (RingWriter::place).
+  void place(std::span<const shader::Indicator> indicators);
+
+  // The indicators live after `steps_run` steps of `config` (is_live: what
+  // the draw shows), oldest first.
+  std::vector<shader::Indicator> live(std::uint64_t steps_run, const Config& config) const;
+
+  const RingWriter& writer() const { return writer_; }
+
+ private:
+  void store(std::uint32_t slot, std::span<const shader::Indicator> run);
+
+  RingWriter writer_;
+  std::vector<shader::Indicator> slots_;
+};
+
+}  // namespace sp
