@@ -59,6 +59,7 @@ struct PenetrationProbe {
   std::uint64_t no_way_out = 0;    // of those, found no way out within the probe's reach
   std::uint64_t hits = 0;
   std::uint64_t back_face_hits = 0;
+  std::uint64_t casts_cut_short = 0;  // casts that reached the per-cast work bound (SimulationStats)
   // Per layer id (Scene::layer_names): penetrations and those without a way out.
   std::vector<std::uint64_t> layer_penetrations;
   std::vector<std::uint64_t> layer_no_way_out;
@@ -106,5 +107,9 @@ Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& con
 // The one-line warning `info` and `simulate` print, or "" when at most half
 // the probe's penetrations found no way out.
 std::string penetration_warning(const PenetrationProbe& probe);
+
+// The one-line warning `info` and `simulate` print when some of the probe's
+// casts reached the per-cast work bound (docs/model.md#work-bounds), or "".
+std::string work_bound_warning(const PenetrationProbe& probe);
 
 }  // namespace sp

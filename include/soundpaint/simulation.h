@@ -143,7 +143,11 @@ struct SimulationStats {
   std::uint64_t casts = 0;  // forward casts + backcasts
   std::uint64_t max_casts_per_step = 0;
   std::uint64_t rays_emitted = 0;
-  std::uint64_t indicators = 0;       // every indicator created
+  std::uint64_t indicators = 0;  // every indicator created
+  // Casts that reached the per-cast work bound (SP_MAX_CAST_PACKETS leaf
+  // packets) and ended there: 0 on any sane level; many mean a stack of
+  // coincident or overlapping triangles (docs/model.md#work-bounds).
+  std::uint64_t casts_cut_short = 0;
   std::vector<LayerCounters> layers;  // per layer id
 };
 
@@ -369,8 +373,12 @@ class Simulator {
   // (iteration, then ray index). May read back from the device.
   virtual Result<std::vector<Indicator>> last_step_indicators() = 0;
 
-  // The ring buffer's indicators that are still visible (age below
-  // indicator_lifetime), oldest first.
+  // The ring buffer's indicators that are live, oldest first: exactly those
+  // the display draws (a hidden, capped, back-facing or too faint spot
+  // aside). A spot is live while its age, (last step run - its step) * dt,
+  // is below the display lifetime, max(indicator_lifetime, 1/3 s): no spot
+  // is shown for less than 1/3 s, the flash limit
+  // (docs/model.md#the-ring-spots-that-live-out-their-lifetime).
   virtual Result<std::vector<Indicator>> live_indicators() = 0;
 
   // Casts made by the last step (for timing reports).

@@ -100,6 +100,8 @@ struct SimulationTotals {
   std::uint64_t rays_emitted = 0;
   std::uint64_t indicators = 0;   // every indicator created
   std::uint64_t ring_filled = 0;  // ring slots holding an indicator (drawn while live)
+  // Casts that reached the per-cast work bound (SimulationStats::casts_cut_short).
+  std::uint64_t casts_cut_short = 0;
 };
 
 // Where the simulation's time went in the newest frame the device has

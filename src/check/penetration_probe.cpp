@@ -7,7 +7,10 @@
 
 #include <glm/glm.hpp>
 
+#include "check/penetration_probe.h"
+
 #include "soundpaint/check.h"
+#include "sim/world_builder.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
@@ -69,51 +72,71 @@ Config probe_config(const Scene& scene, const Config& config, const CheckSetting
 
 }  // namespace
 
+namespace detail {
+
+PenetrationProbe probe_penetration_on(const Scene& scene, const Config& config, const CheckSettings& settings,
+                                      const WorldGeometryHandle& geometry) {
+  Scene probe_scene;
+  probe_scene.path = scene.path;
+  probe_scene.triangle_layers = scene.triangle_layers;
+  probe_scene.layer_names = scene.layer_names;
+  const std::vector<glm::vec3> origins = probe_origins(scene, config);
+  for (const glm::vec3& at : origins) {
+    SourceDesc source;
+    source.position = at;
+    source.max_distance = kProbeRange;
+    probe_scene.sources.push_back(source);
+  }
+  Config probe = probe_config(scene, config, settings);
+  probe.listener_position = origins.front();
+  // Sources out of the listener's scan radius would stay silent: one
+  // listener cannot be near all of them, so each gets a turn.
+  PenetrationProbe result;
+  result.layer_penetrations.assign(scene.layer_names.size(), 0);
+  result.layer_no_way_out.assign(scene.layer_names.size(), 0);
+  // The level as the command built it, copied: the probe's own acoustics
+  // change the layers, never the geometry.
+  World world = make_world_around(probe_scene, probe, geometry);
+  std::vector<bool> sheet(world.layer_properties.size());
+  for (std::size_t l = 0; l < sheet.size(); ++l) sheet[l] = world.layer_properties[l].sheet_thickness > 0.0f;
+  auto simulator = create_cpu_simulator(std::move(world), CpuSettings{settings.threads}).value();
+  const std::uint32_t steps = std::max<std::uint32_t>(settings.probe_steps, 1u);
+  for (std::uint32_t n = 0; n < steps; ++n) {
+    simulator->set_listener(origins[n % origins.size()]).value();
+    simulator->step().value();
+  }
+  const SimulationStats stats = simulator->stats().value();
+  result.casts_cut_short = stats.casts_cut_short;
+  for (std::size_t l = 0; l < stats.layers.size() && l < sheet.size(); ++l) {
+    const LayerCounters& c = stats.layers[l];
+    result.hits += c.hits;
+    result.back_face_hits += c.back_face_hits;
+    if (sheet[l]) continue;  // sheets are crossed on the spot, never searched
+    result.layer_penetrations[l] = c.penetrations;
+    result.layer_no_way_out[l] = c.backcast_misses;
+    result.penetrations += c.penetrations;
+    result.no_way_out += c.backcast_misses;
+  }
+  return result;
+}
+
+}  // namespace detail
+
 Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& config, const CheckSettings& settings) {
   return capture_errors(
       [&]() -> PenetrationProbe {
-        Scene probe_scene;
-        probe_scene.path = scene.path;
-        probe_scene.vertices = scene.vertices;
-        probe_scene.triangle_layers = scene.triangle_layers;
-        probe_scene.layer_names = scene.layer_names;
-        const std::vector<glm::vec3> origins = probe_origins(scene, config);
-        for (const glm::vec3& at : origins) {
-          SourceDesc source;
-          source.position = at;
-          source.max_distance = kProbeRange;
-          probe_scene.sources.push_back(source);
-        }
-        Config probe = probe_config(scene, config, settings);
-        probe.listener_position = origins.front();
-        // Sources out of the listener's scan radius would stay silent: one
-        // listener cannot be near all of them, so each gets a turn.
-        PenetrationProbe result;
-        result.layer_penetrations.assign(scene.layer_names.size(), 0);
-        result.layer_no_way_out.assign(scene.layer_names.size(), 0);
-        World world = make_world(probe_scene, probe).value();
-        std::vector<bool> sheet(world.layer_properties.size());
-        for (std::size_t l = 0; l < sheet.size(); ++l) sheet[l] = world.layer_properties[l].sheet_thickness > 0.0f;
-        auto simulator = create_cpu_simulator(std::move(world), CpuSettings{settings.threads}).value();
-        const std::uint32_t steps = std::max<std::uint32_t>(settings.probe_steps, 1u);
-        for (std::uint32_t n = 0; n < steps; ++n) {
-          simulator->set_listener(origins[n % origins.size()]).value();
-          simulator->step().value();
-        }
-        const SimulationStats stats = simulator->stats().value();
-        for (std::size_t l = 0; l < stats.layers.size() && l < sheet.size(); ++l) {
-          const LayerCounters& c = stats.layers[l];
-          result.hits += c.hits;
-          result.back_face_hits += c.back_face_hits;
-          if (sheet[l]) continue;  // sheets are crossed on the spot, never searched
-          result.layer_penetrations[l] = c.penetrations;
-          result.layer_no_way_out[l] = c.backcast_misses;
-          result.penetrations += c.penetrations;
-          result.no_way_out += c.backcast_misses;
-        }
-        return result;
+        return detail::probe_penetration_on(scene, config, settings,
+                                            detail::build_world_geometry(scene, config, BvhBuildSettings{}, nullptr));
       },
       ErrorCode::InvalidScene);
+}
+
+std::string work_bound_warning(const PenetrationProbe& probe) {
+  if (probe.casts_cut_short == 0) return {};
+  return std::to_string(probe.casts_cut_short) +
+         " probe casts reached the per-cast work bound and ended there: the level stacks coincident or overlapping "
+         "triangles that no bounding box can separate, so sound through them is cut short; 'soundpaint check' "
+         "says more";
 }
 
 std::string penetration_warning(const PenetrationProbe& probe) {

@@ -12,9 +12,13 @@
 #include <glm/glm.hpp>
 
 #include "bvh/mesh_topology.h"
+#include "check/penetration_probe.h"
+#include "check/tree_cost.h"
 #include "core/glm_interop.h"
 #include "core/printable_text.h"
 #include "sim/memory_estimate.h"
+#include "sim/world_builder.h"
+#include "sim/world_geometry.h"
 #include "soundpaint/check.h"
 
 namespace sp {
@@ -194,16 +198,18 @@ Result<CheckReport> check_scene(const Scene& scene, const Config& config, const 
       [&]() -> CheckReport {
         CheckReport report;
         report.triangles = scene.triangle_count();
-        const MeshTopology topology =
-            analyse_mesh(to_glm(scene.vertices), scene.triangle_layers, scene.layer_names.size());
+        // The level is welded and built once; both probes run on copies.
+        MeshTopology topology;
+        const WorldGeometryHandle geometry = detail::build_world_geometry(scene, config, BvhBuildSettings{}, &topology);
         add_topology_findings(scene, topology, report.findings);
         add_scale_finding(scene, report.findings);
-        report.probe = probe_penetration(scene, config, settings).value();
+        report.probe = detail::probe_penetration_on(scene, config, settings, geometry);
         CheckSettings at_config = settings;
         at_config.probe_reach = 0.0f;
-        report.probe_at_config = probe_penetration(scene, config, at_config).value();
+        report.probe_at_config = detail::probe_penetration_on(scene, config, at_config, geometry);
         const float reach = std::max(settings.probe_reach, config.max_wall_thickness);
         add_probe_findings(scene, config, report, reach, report.findings);
+        add_work_findings(geometry->bvh, geometry->edges_left_out, report.probe, report.findings);
         add_memory_finding(config, settings.memory_budget_bytes, report.findings);
         return report;
       },

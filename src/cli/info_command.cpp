@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
+#include "check/tree_cost.h"
 #include "cli/world_loading.h"
 #include "core/printable_text.h"
 #include "sim/step_plan.h"
@@ -48,7 +49,7 @@ int run_info(const std::vector<std::string>& args) {
   const char* listener_from = config.listener_position ? "config" : scene.camera ? "camera" : "none; origin assumed";
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
   World world = make_world(scene, config).value();
-  warn_if_penetration_fails(scene, config);
+  const std::optional<PenetrationProbe> probe = warn_if_penetration_fails(scene, world);
 
   // Every name below is the level's or the config's: data, printed escaped
   // (core/printable_text.h) so that none can steer the terminal.
@@ -73,12 +74,24 @@ int run_info(const std::vector<std::string>& args) {
   std::printf("listener: ");
   print_vec(world.listener);
   std::printf(" (%s)\n", listener_from);
-  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms\n", world.geometry->bvh.nodes.size(),
-              world.geometry->bvh.depth, world.geometry->bvh.build_ms);
-  // Each exposed edge is held by one triangle (a free boundary) or two.
+  const Bvh& bvh = world.geometry->bvh;
+  const double sah = bvh_sah_cost(bvh);
+  std::printf("bvh: %zu nodes, depth %u, built in %.3f ms, SAH cost %.0f (tests a ray through the level expects)\n",
+              bvh.nodes.size(), bvh.depth, bvh.build_ms, sah);
+  if (is_degenerate_tree(sah)) std::printf("  degenerate: %s\n", degenerate_tree_advice().c_str());
+  if (probe && probe->casts_cut_short > 0)
+    std::printf("  %llu of the probe's casts reached the per-cast work bound\n",
+                static_cast<unsigned long long>(probe->casts_cut_short));
+  // Each exposed edge is held by one triangle (a free boundary) or two:
+  // the world's own when diffraction is on, else found here to show them.
   const auto started = std::chrono::steady_clock::now();
-  const std::vector<shader::TriangleEdges> edges = find_exposed_edges(world.geometry->bvh);
-  const double edges_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+  std::uint64_t left_out = world.geometry->edges_left_out;
+  const std::vector<shader::TriangleEdges> edges =
+      config.diffraction.enabled ? bvh.edges : find_exposed_edges(bvh, &left_out);
+  const double edges_ms =
+      config.diffraction.enabled
+          ? 0.0
+          : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   std::size_t boundary = 0, convex = 0;
   const float cos_max = diffraction_edge_cos_max(config.diffraction);
   for (const shader::TriangleEdges& e : edges)
@@ -87,9 +100,19 @@ int run_info(const std::vector<std::string>& args) {
       if (e.turn_cos[i] <= -1.0f) ++boundary;
       else if (e.turn_cos[i] <= cos_max) ++convex;
     }
-  std::printf(
-      "diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found in %.3f ms (diffraction %s)\n",
-      double(config.diffraction.edge_angle), convex / 2, boundary, edges_ms, config.diffraction.enabled ? "on" : "off");
+  if (config.diffraction.enabled)
+    std::printf(
+        "diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found with the level "
+        "(diffraction on)\n",
+        double(config.diffraction.edge_angle), convex / 2, boundary);
+  else
+    std::printf(
+        "diffracting edges (at %.0f degrees): %zu convex, %zu free boundaries, found in %.3f ms (diffraction "
+        "off)\n",
+        double(config.diffraction.edge_angle), convex / 2, boundary, edges_ms);
+  if (left_out > 0)
+    std::printf("  %llu edges left out: their burial test reached its work bound (overlapping triangles)\n",
+                static_cast<unsigned long long>(left_out));
   return 0;
 }
 

@@ -68,7 +68,7 @@ int run_simulate(const std::vector<std::string>& args) {
 
   LoadedWorld loaded =
       load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
-  warn_if_penetration_fails(loaded.scene, loaded.world.config);
+  (void)warn_if_penetration_fails(loaded.scene, loaded.world);
   std::unique_ptr<Simulator> simulator = create_simulator(
       std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "gpu/gpu_simulator.h"
+#include "check/penetration_probe.h"
 #include "soundpaint/check.h"
 #include "vk/context.h"
 
@@ -18,13 +19,16 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
   return LoadedWorld{std::move(scene), std::move(world)};
 }
 
-void warn_if_penetration_fails(const Scene& scene, const Config& config) {
+std::optional<PenetrationProbe> warn_if_penetration_fails(const Scene& scene, const World& world) {
   CheckSettings settings;
   settings.probe_reach = 0.0f;  // what a simulation with this config sees
-  const Result<PenetrationProbe> probe = probe_penetration(scene, config, settings);
-  if (!probe) return;  // the scene loaded; the probe's own trouble is no reason to stop
-  const std::string warning = penetration_warning(probe.value());
-  if (!warning.empty()) std::fprintf(stderr, "soundpaint: warning: %s\n", warning.c_str());
+  const Result<PenetrationProbe> probe =
+      capture_errors([&] { return detail::probe_penetration_on(scene, world.config, settings, world.geometry); },
+                     ErrorCode::InvalidScene);
+  if (!probe) return std::nullopt;  // the scene loaded; the probe's own trouble is no reason to stop
+  for (const std::string& warning : {penetration_warning(probe.value()), work_bound_warning(probe.value())})
+    if (!warning.empty()) std::fprintf(stderr, "soundpaint: warning: %s\n", warning.c_str());
+  return probe.value();
 }
 
 BackendChoice parse_backend(const std::string& name) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "soundpaint/check.h"
 #include "soundpaint/scene.h"
 #include "soundpaint/simulation.h"
 
@@ -29,9 +30,11 @@ LoadedWorld load_scene_and_world(const std::string& scene_path, const std::optio
                                  const SceneLoadOptions& scene_options = {});
 
 // Runs the penetration probe (include/soundpaint/check.h) at the config's
-// W_max and prints its one-line warning on stderr when most penetrations
-// find no way out of matter: such a level looks like any other otherwise.
-void warn_if_penetration_fails(const Scene& scene, const Config& config);
+// W_max on the world's own geometry and prints its one-line warnings on
+// stderr: when most penetrations find no way out of matter, and when casts
+// reached the per-cast work bound. Such a level looks like any other
+// otherwise. The probe, or nothing when it failed.
+std::optional<PenetrationProbe> warn_if_penetration_fails(const Scene& scene, const World& world);
 
 // "cpu", "gpu" or "auto"; throws naming --backend otherwise.
 BackendChoice parse_backend(const std::string& name);

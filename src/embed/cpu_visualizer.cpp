@@ -67,6 +67,7 @@ class CpuVisualizer final : public VisualizerBase {
       }
       if (finished != nullptr) {
         totals_.casts += finished->counters.casts;
+        totals_.casts_cut_short += finished->counters.cut_short;
         totals_.indicators += finished->indicator_count();
         totals_.rays_emitted += running_rays_;
         upload_step(cmd, *finished);

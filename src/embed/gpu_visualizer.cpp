@@ -2,6 +2,7 @@
 // the StepEngine's transfers and dispatches; nothing is submitted or waited
 // on here.
 #include <array>
+#include <iterator>
 #include <cstddef>
 #include <vector>
 
@@ -140,8 +141,9 @@ class GpuVisualizer final : public VisualizerBase {
         region(offsetof(Control, total_casts_lo), offsetof(SimulationTotals, casts), 8),
         region(offsetof(Control, total_rays_lo), offsetof(SimulationTotals, rays_emitted), 8),
         region(offsetof(Control, total_indicators_lo), offsetof(SimulationTotals, indicators), 8),
-        region(offsetof(Control, ring_filled), offsetof(SimulationTotals, ring_filled), 4)};
-    vkCmdCopyBuffer(cmd, control, destination, 5, regions);
+        region(offsetof(Control, ring_filled), offsetof(SimulationTotals, ring_filled), 4),
+        region(offsetof(Control, total_cut_short_lo), offsetof(SimulationTotals, casts_cut_short), 8)};
+    vkCmdCopyBuffer(cmd, control, destination, static_cast<std::uint32_t>(std::size(regions)), regions);
     // Device -> host: the copy is visible to host reads after the fence.
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);

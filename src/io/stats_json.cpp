@@ -35,6 +35,7 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
   json["max_casts_per_step"] = stats.max_casts_per_step;
   json["rays_emitted"] = stats.rays_emitted;
   json["indicators"] = stats.indicators;
+  json["casts_cut_short"] = stats.casts_cut_short;
   std::uint64_t diffractions = 0;
   for (const LayerCounters& c : stats.layers) diffractions += c.diffractions;
   json["diffractions"] = diffractions;  // the run's total (contract: README.md, "Command line")

@@ -13,6 +13,7 @@
 #include "display/display_checks.h"
 #include "sim/source_checks.h"
 #include "sim/source_display.h"
+#include "sim/world_builder.h"
 #include "sim/world_geometry.h"
 #include "sp_ring.h"
 #include "soundpaint/simulation.h"
@@ -122,47 +123,70 @@ WorldGeometryHandle& WorldGeometryHandle::operator=(WorldGeometryHandle&& other)
 
 std::size_t World::triangle_count() const { return geometry->bvh.triangle_count(); }
 
+namespace detail {
+
+WorldGeometryHandle build_world_geometry(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings,
+                                         MeshTopology* topology_out) {
+  check_scene(scene);
+  check_config(config);
+  WorldGeometryHandle geometry;
+  // Which triangles form one piece of surface: the matter rules cross a
+  // piece met through a shared edge once (docs/model.md#the-rules).
+  std::vector<glm::vec3> vertices = to_glm(scene.vertices);
+  MeshTopology topology = analyse_mesh(vertices, scene.triangle_layers, scene.layer_names.size());
+  geometry->bvh = build_bvh(vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
+  // The edges sound bends round, only when it may (docs/model.md#diffraction).
+  if (config.diffraction.enabled) geometry->bvh.edges = find_exposed_edges(geometry->bvh, &geometry->edges_left_out);
+  if (!scene.instance_names.empty()) {
+    geometry->rest_vertices = std::move(vertices);
+    geometry->triangle_instances = scene.triangle_instances;
+    if (geometry->triangle_instances.empty())
+      geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+    geometry->triangle_layers = scene.triangle_layers;
+    geometry->triangle_solids = topology.triangle_solids;
+  }
+  if (topology_out != nullptr) *topology_out = std::move(topology);
+  return geometry;
+}
+
+World make_world_around(const Scene& scene, const Config& config, WorldGeometryHandle geometry) {
+  check_config(config);
+  World world;
+  world.config = config;
+  world.sources = scene.sources;
+  world.sources.insert(world.sources.end(), config.sources.begin(), config.sources.end());
+  for (std::size_t id = 0; id < world.sources.size(); ++id) check_source(world.sources[id], id);
+  world.source_active.assign(world.sources.size(), true);
+  resolve_all_source_display(world);
+  if (config.listener_position) {
+    world.listener = *config.listener_position;
+  } else if (scene.camera) {
+    world.listener = scene.camera->position();
+  } else {
+    throw Exception(ErrorCode::InvalidArgument,
+                    "no listener: the scene has no camera node and the config sets no listener.position");
+  }
+  world.layer_names = scene.layer_names;
+  world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
+  for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
+  for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
+  world.geometry = std::move(geometry);
+  if (!scene.instance_names.empty()) {
+    world.instance_names = scene.instance_names;
+    world.instance_transforms.assign(scene.instance_names.size(), Mat4{});
+  }
+  return world;
+}
+
+}  // namespace detail
+
 Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings) {
   return capture_errors([&]() -> World {
+    // The cheap checks first: a bad source or a missing listener is
+    // refused before the level's geometry is built.
     check_scene(scene);
-    check_config(config);
-    World world;
-    world.config = config;
-    world.sources = scene.sources;
-    world.sources.insert(world.sources.end(), config.sources.begin(), config.sources.end());
-    for (std::size_t id = 0; id < world.sources.size(); ++id) check_source(world.sources[id], id);
-    world.source_active.assign(world.sources.size(), true);
-    resolve_all_source_display(world);
-    if (config.listener_position) {
-      world.listener = *config.listener_position;
-    } else if (scene.camera) {
-      world.listener = scene.camera->position();
-    } else {
-      throw Exception(ErrorCode::InvalidArgument,
-                      "no listener: the scene has no camera node and the config sets no listener.position");
-    }
-    world.layer_names = scene.layer_names;
-    world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
-    for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
-    for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
-    // Which triangles form one piece of surface: the matter rules cross a
-    // piece met through a shared edge once (docs/model.md#the-rules).
-    std::vector<glm::vec3> vertices = to_glm(scene.vertices);
-    MeshTopology topology = analyse_mesh(vertices, scene.triangle_layers, scene.layer_names.size());
-    world.geometry->bvh = build_bvh(vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
-    // The edges sound bends round, only when it may (docs/model.md#diffraction).
-    if (config.diffraction.enabled) world.geometry->bvh.edges = find_exposed_edges(world.geometry->bvh);
-    if (!scene.instance_names.empty()) {
-      world.instance_names = scene.instance_names;
-      world.instance_transforms.assign(scene.instance_names.size(), Mat4{});
-      world.geometry->rest_vertices = std::move(vertices);
-      world.geometry->triangle_instances = scene.triangle_instances;
-      if (world.geometry->triangle_instances.empty())
-        world.geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
-      world.geometry->triangle_layers = scene.triangle_layers;
-      world.geometry->triangle_solids = std::move(topology.triangle_solids);
-    }
-    return world;
+    (void)detail::make_world_around(scene, config, WorldGeometryHandle{});
+    return detail::make_world_around(scene, config, detail::build_world_geometry(scene, config, bvh_settings, nullptr));
   });
 }
 

@@ -21,6 +21,9 @@ struct WorldGeometry {
   std::vector<std::uint32_t> triangle_instances;  // per triangle, or kStaticInstance
   std::vector<std::uint32_t> triangle_layers;     // per triangle (scene order), for rebuilds
   std::vector<std::uint32_t> triangle_solids;     // per triangle (scene order), for rebuilds
+  // Edges whose burial query reached its work bound and were left out
+  // (find_exposed_edges; docs/model.md#work-bounds), at the last build.
+  std::uint64_t edges_left_out = 0;
   double build_sah_cost = 0.0;  // the BVH's absolute SAH cost after its last build (set by SoundScene)
 };
 
