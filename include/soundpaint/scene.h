@@ -63,7 +63,18 @@ struct SceneLoadOptions {
   // A scene with more triangles than this (every instance of a mesh counted)
   // is refused before its triangles are built. At most 2^32 / 3.
   std::uint64_t max_triangles = kDefaultMaxTriangles;
+  // A scene whose triangles would need more than this many bytes to load
+  // and build (kSceneBytesPerTriangle each) is refused as soon as they are
+  // counted, before they are built. The default is the simulation's own
+  // (kDefaultMemoryBudgetBytes, 2 GiB), which holds max_triangles.
+  std::uint64_t memory_budget_bytes = std::uint64_t{2} << 30;
 };
+
+// What one triangle costs at the peak of loading a level and building what
+// a simulation traces (welding, solids, the BVH, diffraction edges, the
+// probe's copy): measured at 640 bytes with 2,000,000 scattered triangles
+// (bench/RESULTS.md, hostile levels), rounded up.
+inline constexpr std::uint64_t kSceneBytesPerTriangle = 700;
 
 // Loads a .gltf or .glb file: every node of the default scene (or scene 0)
 // with its transform composed, every triangle primitive (indexed or not, any
@@ -73,7 +84,8 @@ struct SceneLoadOptions {
 // Errors name the file and the problem: unreadable file, malformed glTF,
 // missing buffer, index out of range, non-finite position, no triangle;
 // and what `options` refuse: a buffer URI outside the rules, JSON nested
-// deeper than 128 levels, more than max_triangles triangles.
+// deeper than 128 levels, more than max_triangles triangles, more than
+// memory_budget_bytes to load and build them (LimitExceeded).
 Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptions& options);
 // load_scene with the default SceneLoadOptions.
 Result<Scene> load_scene(const std::filesystem::path& path);

@@ -30,6 +30,7 @@ SceneLoadOptions scene_load_options(const ParsedArgs& parsed) {
   options.allow_external_uris = parsed.flags.count("--allow-external-uris") != 0;
   // The library caps what it accepts (32-bit triangle ids) and says so.
   options.max_triangles = parsed.unsigned_value("--max-triangles", 1, UINT64_MAX).value_or(options.max_triangles);
+  options.memory_budget_bytes = memory_budget(parsed);  // the default where a command has no --memory-budget
   return options;
 }
 

@@ -194,6 +194,14 @@ class SceneAssembler {
         fail(over + " (the limit max_triangles can be raised: --max-triangles, SceneLoadOptions)");
       }
     }
+    if (total > options_.memory_budget_bytes / kSceneBytesPerTriangle) {
+      const auto mib = [](std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
+      throw Exception(ErrorCode::LimitExceeded,
+                      std::to_string(total) + " triangles need about " + mib(total * kSceneBytesPerTriangle) +
+                          " to load and build (" + std::to_string(kSceneBytesPerTriangle) +
+                          " bytes each), over the memory budget of " + mib(options_.memory_budget_bytes) +
+                          "; raise it (--memory-budget, SceneLoadOptions::memory_budget_bytes)");
+    }
     return total;
   }
 
@@ -250,8 +258,10 @@ Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptio
     return scene;
   } catch (const Exception& e) {
     // Parts report without the path (json_fields as InvalidConfig); every
-    // problem in a scene file is a scene error.
-    return Error{ErrorCode::InvalidScene, file + ": " + e.error().message, 0};
+    // problem in a scene file is a scene error, but the memory budget's.
+    const ErrorCode code =
+        e.error().code == ErrorCode::LimitExceeded ? ErrorCode::LimitExceeded : ErrorCode::InvalidScene;
+    return Error{code, file + ": " + e.error().message, 0};
   } catch (const std::bad_alloc&) {
     return Error{ErrorCode::LimitExceeded, file + ": out of memory while loading", 0};
   } catch (const std::exception& e) {
