@@ -56,7 +56,8 @@ inline constexpr std::uint64_t kDefaultMaxTriangles = 2'000'000;
 // level, a mod): README "Security".
 struct SceneLoadOptions {
   // false: buffers are read only from regular files inside the scene file's
-  // folder tree (no absolute path, no ".." or symbolic link leading out).
+  // folder tree (no absolute path, no ".." or symbolic link leading out;
+  // a link with an absolute target is refused even when it points inside).
   // true: from any regular file the URI names, for trusted asset pipelines.
   // Either way, devices, /proc and /sys are never read and images never are.
   bool allow_external_uris = false;

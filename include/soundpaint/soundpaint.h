@@ -184,7 +184,10 @@ typedef struct sp_scene_load_options {
                              its triangles are built; default 2,000,000, at most 2^32 / 3 */
 } sp_scene_load_options;
 
-/* Lifts the folder rule: buffer URIs may name regular files anywhere
+/* Without this flag, buffer URIs name regular files inside the scene's
+ * folder tree only, through relative symbolic links at most (a link with an
+ * absolute target is refused). The flag lifts the folder rule: buffer URIs
+ * may name regular files anywhere
  * (absolute paths, ".." and symbolic links leading out of the scene's
  * folder), for trusted asset pipelines only. Devices, /proc and /sys stay
  * refused, and images are never read either way. */

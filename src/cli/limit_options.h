@@ -1,6 +1,6 @@
 // The options that set how far soundpaint trusts its input (README
 // "Security"), shared by the commands that take them (simulate, render,
-// info, check).
+// info, check, view).
 #pragma once
 
 #include <cstdint>
