@@ -23,12 +23,9 @@
 #include "soundpaint/config.h"
 #include "sp_diffraction.h"
 #include "sp_ray_model.h"
-#include "support/brush_gltf.h"
-#include "support/exposed_edges.h"
 #include "support/gpu_environment.h"
 #include "support/run_steps.h"
 #include "support/scene_builder.h"
-#include "support/test_directory.h"
 #include "support/thin_screen.h"
 
 namespace sp {
@@ -36,9 +33,6 @@ namespace {
 
 using test::add_box;
 using test::add_quad;
-using test::bits_at;
-using test::brush_bits;
-using test::level_world;
 
 constexpr double kPi = std::numbers::pi;
 

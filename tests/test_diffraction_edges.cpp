@@ -2,29 +2,20 @@
 // convex edges, a sheet's rim, concave and buried edges left out; thin
 // solids keep theirs while touching brushes bury theirs, however the level
 // is exported; a refit finds them again.
-#include <algorithm>
 #include <bit>
-#include <cmath>
+#include <cstddef>
 #include <cstring>
-#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "bvh/diffraction_edges.h"
 #include "core/glm_interop.h"
-#include "sim/cpu_tracer.h"
-#include "sim/step_plan.h"
 #include "sim/world_geometry.h"
 #include "soundpaint/config.h"
-#include "sp_diffraction.h"
-#include "sp_ray_model.h"
 #include "support/brush_gltf.h"
 #include "support/exposed_edges.h"
-#include "support/gpu_environment.h"
-#include "support/run_steps.h"
 #include "support/scene_builder.h"
 #include "support/test_directory.h"
 #include "support/thin_screen.h"
