@@ -20,6 +20,7 @@
 #include "core/printable_text.h"
 #include "sim/memory_estimate.h"
 #include "soundpaint/check.h"
+#include "support/check_findings.h"
 #include "support/scene_builder.h"
 
 namespace sp {
@@ -36,12 +37,6 @@ CheckReport check(const Scene& scene, Config config = {}) {
   settings.probe_rays_per_step = 1000;
   settings.threads = 2;
   return check_scene(scene, config, settings).value();
-}
-
-const CheckFinding* find(const CheckReport& report, const std::string& code) {
-  for (const CheckFinding& f : report.findings)
-    if (f.code == code) return &f;
-  return nullptr;
 }
 
 std::string codes(const CheckReport& report) {
@@ -83,7 +78,7 @@ TEST(Check, BoxWithoutItsBottomHasFourOpenEdges) {
     c.listener_position = glm::vec3(0.5f, 3, 0.5f);
     return c;
   }());
-  const CheckFinding* open = find(report, "open_edges");
+  const CheckFinding* open = test::find_finding(report, "open_edges");
   ASSERT_NE(open, nullptr) << codes(report);
   EXPECT_EQ(open->count, 4u);
   EXPECT_NE(open->message.find("wood 4"), std::string::npos) << open->message;
@@ -187,10 +182,10 @@ TEST(Check, FlippedFaceHasFourInconsistentEdges) {
     c.listener_position = glm::vec3(0.5f, 3, 0.5f);
     return c;
   }());
-  const CheckFinding* flipped = find(report, "inconsistent_winding");
+  const CheckFinding* flipped = test::find_finding(report, "inconsistent_winding");
   ASSERT_NE(flipped, nullptr) << codes(report);
   EXPECT_EQ(flipped->count, 4u);  // the flipped face's outline; its diagonal is its own
-  EXPECT_EQ(find(report, "open_edges"), nullptr) << codes(report);
+  EXPECT_EQ(test::find_finding(report, "open_edges"), nullptr) << codes(report);
 }
 
 TEST(Check, DegenerateTrianglesAreCounted) {
@@ -198,7 +193,7 @@ TEST(Check, DegenerateTrianglesAreCounted) {
   test::add_triangle(scene, {0, 0, 0}, {1, 1, 1}, {2, 2, 2}, "concrete");  // collinear
   test::add_triangle(scene, {5, 5, 5}, {5, 5, 5}, {5, 5, 5}, "concrete");  // a point
   const CheckReport report = check(scene);
-  const CheckFinding* degenerate = find(report, "degenerate_triangles");
+  const CheckFinding* degenerate = test::find_finding(report, "degenerate_triangles");
   ASSERT_NE(degenerate, nullptr) << codes(report);
   EXPECT_EQ(degenerate->count, 2u);
 }
@@ -208,18 +203,18 @@ TEST(Check, LevelInQuakeUnitsIsProbablyNotInMetres) {
   test::add_closed_room(scene, {-1500, 0, -800}, {1500, 128, 800}, 16.0f, "concrete");
   scene.sources.push_back(test::source_at({0, 64, 0}, 3000.0f));
   const CheckReport report = check(scene);
-  const CheckFinding* scale = find(report, "scale");
+  const CheckFinding* scale = test::find_finding(report, "scale");
   ASSERT_NE(scale, nullptr) << codes(report);
   EXPECT_EQ(scale->count, 3032u);  // 3000 inside plus two 16-unit walls
-  EXPECT_EQ(find(check(closed_room()), "scale"), nullptr);
+  EXPECT_EQ(test::find_finding(check(closed_room()), "scale"), nullptr);
 }
 
 TEST(Check, RenderMeshRoomLetsNoPenetrationOut) {
   // A sealed room's render mesh is a closed surface turned inside out (the
   // matter is everything outside): no open edge, but no way out either.
   const CheckReport report = check(render_mesh_room());
-  EXPECT_EQ(find(report, "open_edges"), nullptr) << codes(report);
-  const CheckFinding* misses = find(report, "penetration_misses");
+  EXPECT_EQ(test::find_finding(report, "open_edges"), nullptr) << codes(report);
+  const CheckFinding* misses = test::find_finding(report, "penetration_misses");
   ASSERT_NE(misses, nullptr) << codes(report);
   EXPECT_EQ(report.probe.no_way_out, report.probe.penetrations);  // one surface, nothing behind it
   EXPECT_EQ(misses->count, report.probe.no_way_out);
@@ -233,9 +228,9 @@ TEST(Check, ThickWallsNeedALargerMaxWallThickness) {
   test::add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 2.0f, "concrete");
   scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
   const CheckReport report = check(scene);
-  EXPECT_EQ(find(report, "penetration_misses"), nullptr) << codes(report);
+  EXPECT_EQ(test::find_finding(report, "penetration_misses"), nullptr) << codes(report);
   EXPECT_EQ(report.probe_at_config.no_way_out, report.probe_at_config.penetrations);
-  ASSERT_NE(find(report, "wall_thickness"), nullptr) << codes(report);
+  ASSERT_NE(test::find_finding(report, "wall_thickness"), nullptr) << codes(report);
 }
 
 TEST(Check, RoomWoundInsideOutIsStruckFromBehind) {
@@ -245,7 +240,7 @@ TEST(Check, RoomWoundInsideOutIsStruckFromBehind) {
   add_box_faces(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, "concrete", test::kAllFaces);
   scene.sources.push_back(test::source_at({0.5f, 1.5f, 0.2f}));
   const CheckReport report = check(scene);
-  const CheckFinding* back = find(report, "back_faces");
+  const CheckFinding* back = test::find_finding(report, "back_faces");
   ASSERT_NE(back, nullptr) << codes(report);
   EXPECT_EQ(report.probe.back_face_hits, report.probe.hits);
   EXPECT_EQ(report.probe.penetrations, 0u);
@@ -257,7 +252,7 @@ TEST(Check, SheetLayersAreNotSearchedForAWayOut) {
   Config config;
   config.layers["concrete"] = {0.8f, 4.0f, 0.05f};
   const CheckReport report = check(render_mesh_room(), config);
-  EXPECT_EQ(find(report, "penetration_misses"), nullptr) << codes(report);
+  EXPECT_EQ(test::find_finding(report, "penetration_misses"), nullptr) << codes(report);
   EXPECT_EQ(report.probe.penetrations, 0u);
 }
 
@@ -330,7 +325,7 @@ TEST(Check, LayerNamesAreEscapedInMessagesAndExactInTheReport) {
   Config config;
   config.listener_position = glm::vec3(0.5f, 3, 0.5f);
   const CheckReport report = check(scene, config);
-  const CheckFinding* open = find(report, "open_edges");
+  const CheckFinding* open = test::find_finding(report, "open_edges");
   ASSERT_NE(open, nullptr) << codes(report);
   EXPECT_NE(open->message.find(" (" + kHostileLayerEscaped + " 4)"), std::string::npos) << open->message;
   EXPECT_EQ(open->message.find_first_of("\x1b\x07\r\n\t\x7f"), std::string::npos) << open->message;
@@ -360,7 +355,7 @@ TEST(Check, JsonReportKeepsValidNamesExactAndMarksInvalidBytes) {
   EXPECT_EQ((*open)["layers"][0]["count"], 8u);
   EXPECT_EQ((*open)["layers"][1]["name"], kHostileLayer);
   EXPECT_EQ((*open)["layers"][1]["count"], 4u);
-  EXPECT_EQ((*open)["message"], find(report, "open_edges")->message);
+  EXPECT_EQ((*open)["message"], test::find_finding(report, "open_edges")->message);
 }
 
 TEST(Check, ConfigOverTheMemoryBudgetIsAFindingWithTheConfigsOwnValues) {
@@ -373,7 +368,7 @@ TEST(Check, ConfigOverTheMemoryBudgetIsAFindingWithTheConfigsOwnValues) {
   const Result<CheckReport> checked = check_scene(closed_room(), config, settings);
   ASSERT_TRUE(checked) << checked.error().message;
   const CheckReport& report = checked.value();
-  const CheckFinding* budget = find(report, "memory_budget");
+  const CheckFinding* budget = test::find_finding(report, "memory_budget");
   ASSERT_NE(budget, nullptr) << codes(report);
   const std::uint64_t needed =
       std::max(estimate_memory(config, Backend::Cpu).total(), estimate_memory(config, Backend::Gpu).total());
@@ -390,9 +385,9 @@ TEST(Check, ConfigOverTheMemoryBudgetIsAFindingWithTheConfigsOwnValues) {
   EXPECT_EQ(budget->message.substr(at + std::to_string(advised_gib).size(), 1), "G") << budget->message;
   settings.memory_budget_bytes = advised_gib << 30;
   EXPECT_GE(settings.memory_budget_bytes, needed);
-  EXPECT_EQ(find(check_scene(closed_room(), config, settings).value(), "memory_budget"), nullptr);
+  EXPECT_EQ(test::find_finding(check_scene(closed_room(), config, settings).value(), "memory_budget"), nullptr);
   // And a small config fits the default budget.
-  EXPECT_EQ(find(check(closed_room()), "memory_budget"), nullptr);
+  EXPECT_EQ(test::find_finding(check(closed_room()), "memory_budget"), nullptr);
 }
 
 TEST(Check, LevelBeyondFloatRangeHasASaneScaleCount) {
@@ -401,7 +396,7 @@ TEST(Check, LevelBeyondFloatRangeHasASaneScaleCount) {
   Scene scene;
   test::add_triangle(scene, {-3e38f, 0, 0}, {3e38f, 0, 0}, {0, 3e38f, 0}, "concrete");
   const CheckReport report = check(scene);
-  const CheckFinding* scale = find(report, "scale");
+  const CheckFinding* scale = test::find_finding(report, "scale");
   ASSERT_NE(scale, nullptr) << codes(report);
   EXPECT_EQ(scale->count, std::uint64_t{1} << 53);
   EXPECT_NE(scale->message.find("the level is 6e+38 units across"), std::string::npos) << scale->message;
@@ -417,7 +412,7 @@ TEST(Check, ProbeStartsInsideALevelFarFromTheOrigin) {
   settings.threads = 2;
   const Result<CheckReport> report = check_scene(scene, Config{}, settings);
   ASSERT_TRUE(report) << report.error().message;
-  EXPECT_NE(find(report.value(), "scale"), nullptr);
+  EXPECT_NE(test::find_finding(report.value(), "scale"), nullptr);
 }
 
 }  // namespace
