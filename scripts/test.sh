@@ -11,13 +11,15 @@ bash scripts/install-deps.sh
 echo "== sanitizers (ASan + UBSan, optimised build in build-asan/)"
 sanitized_tests=(test_scene test_config test_bvh test_wide_bvh test_bvh_refit test_ray_model test_simulation test_sound_scene test_capi
                  test_scene_confinement test_scene_limits test_config_limits test_thread_pool test_build_workers test_memory_estimate
-                 test_allocations test_output_path test_capi_untrusted test_capi_threads)
+                 test_allocations test_output_path test_capi_untrusted test_capi_threads test_hostile_scenes)
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOUNDPAINT_SANITIZE=ON -DSOUNDPAINT_WERROR=ON \
   -DSOUNDPAINT_BUILD_BENCH=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)" --target "${sanitized_tests[@]}"
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+# test_hostile_scenes' GPU case is left out: lavapipe's JIT leaks under
+# LeakSanitizer. The CPU cases are the ones that reach hostile arithmetic.
 for t in "${sanitized_tests[@]}"; do
-  ./build-asan/tests/"$t" --gtest_brief=1
+  ./build-asan/tests/"$t" --gtest_brief=1 --gtest_filter=-HostileScenesGpu.*
 done
 echo "== sanitizers: ${#sanitized_tests[@]} suites clean"
 
