@@ -14,8 +14,8 @@ namespace sp::detail {
 // when config.diffraction is on, and what moving parts need), and the
 // mesh's topology in *topology_out when it is not null. Throws as
 // make_world does.
-WorldGeometryHandle build_world_geometry(const Scene& scene, const Config& config,
-                                         const BvhBuildSettings& bvh_settings, MeshTopology* topology_out);
+WorldGeometryHandle build_world_geometry(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings,
+                                         MeshTopology* topology_out);
 
 // A World for `scene` and `config` around `geometry`, which must have been
 // built from the same scene (its triangle layers checked, so this takes
