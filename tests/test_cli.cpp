@@ -57,27 +57,41 @@ TEST(Cli, SimulateWritesTheContractCsvAndStats) {
     hits += layer["hits"].get<std::uint64_t>();
   }
   EXPECT_GE(hits, stats["indicators"].get<std::uint64_t>() / 2);
-  // every row has 22 fields and a known kind; the step column counts up;
+  // every row has 27 fields and a known kind; the step column counts up;
   // dx,dy,dz is the unit direction of travel: into the surface for a hit
-  // (against the normal, which faces the ray's side), out of it for an exit
+  // (against the normal, which faces the ray's side), out of it for an exit;
+  // heard is what arrives at the listener, never more than the spot's
+  // energy; ax,ay,az the unit way from the listener to the spot; toward in
+  // [0, 1], never without hearing
   int last_step = -1;
+  std::size_t heard = 0;
   for (std::size_t k = 1; k < csv.size(); ++k) {
-    EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 21) << csv[k];
+    EXPECT_EQ(std::count(csv[k].begin(), csv[k].end(), ','), 26) << csv[k];
     std::vector<double> f;
     std::stringstream fields(csv[k]);
     for (std::string cell; std::getline(fields, cell, ',');)
       f.push_back(cell == "hit" || cell == "exit" ? 0.0 : std::stod(cell));
-    ASSERT_EQ(f.size(), 22u);
+    ASSERT_EQ(f.size(), 27u);
     const double dx = f[18], dy = f[19], dz = f[20], along_normal = dx * f[6] + dy * f[7] + dz * f[8];
     EXPECT_NEAR(dx * dx + dy * dy + dz * dz, 1.0, 1e-5) << csv[k];
     EXPECT_TRUE(csv[k].find(",hit,") != std::string::npos ? along_normal < 0.0 : along_normal > 0.0) << csv[k];
     EXPECT_EQ(f[21], 0.0) << "no diffraction without the key";
+    EXPECT_GE(f[22], 0.0) << csv[k];
+    EXPECT_LE(f[22], f[9]) << csv[k];
+    EXPECT_NEAR(f[23] * f[23] + f[24] * f[24] + f[25] * f[25], 1.0, 1e-5) << csv[k];
+    EXPECT_GE(f[26], 0.0) << csv[k];
+    EXPECT_LE(f[26], 1.0) << csv[k];
+    if (f[22] == 0.0) {
+      EXPECT_EQ(f[26], 0.0) << csv[k];
+    }
+    heard += f[22] > 0.0 ? 1 : 0;
     int step = std::stoi(csv[k]);
     EXPECT_GE(step, last_step);
     last_step = step;
     auto kind = csv[k].substr(csv[k].find(',') + 1, 4);
     EXPECT_TRUE(kind == "hit," || kind == "exit") << csv[k];
   }
+  EXPECT_GT(heard, 0u) << "the listener, inside the level, hears some spots";
   EXPECT_EQ(count_files(dir.path()), 4u);  // ind.csv, stats.json, stdout, stderr: no temporaries left
 }
 

@@ -39,6 +39,17 @@ struct Indicator {
   std::uint32_t step = 0;
   std::uint32_t ray_index = 0;
   std::uint32_t iteration = 0;
+  // What reaches the player (docs/model.md#cues-for-the-player), with
+  // Config::cues.listen: the unit direction from the listener to this spot,
+  // the way its sound arrives, and the energy that arrives along it, 0 when
+  // the listener does not hear it (its surface faces away, the way is
+  // blocked, or no more than tau_min would arrive).
+  Vec3 arrival;
+  float heard_energy = 0.0f;
+  std::uint32_t emit_cell = 0;    // the guide cell its ray was emitted into
+  std::uint32_t source_slot = 0;  // its source's entry in its step's source table
+  float toward = 0.0f;            // in [0, 1]: how nearly `arrival` points at its source; 0 when not heard
+  std::uint32_t reserved = 0;
 };
 
 // How make_world builds its BVH (binned SAH).

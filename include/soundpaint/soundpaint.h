@@ -131,6 +131,10 @@ typedef struct sp_indicator {
   uint32_t step;         /* the step that created it */
   float direction[3];    /* unit; the ray's direction of travel: incoming (hit), outgoing (exit) */
   uint32_t diffractions; /* times the ray turned at an edge before this indicator */
+  /* What reaches the player (config "cues"; docs/model.md "Cues for the player"): */
+  float heard_energy; /* energy arriving at the listener from this spot, units of E0; 0: not heard */
+  float arrival[3];   /* unit; from the listener to the spot, the way its sound arrives */
+  float toward;       /* [0, 1]: how nearly `arrival` points at the source; 0 when not heard */
 } sp_indicator;
 
 /* Totals over every step run so far. */

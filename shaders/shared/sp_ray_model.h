@@ -6,6 +6,7 @@
 #ifndef SP_RAY_MODEL_H
 #define SP_RAY_MODEL_H
 
+#include "sp_connect.h"
 #include "sp_diffraction.h"
 #include "sp_matter.h"
 #include "sp_random.h"
@@ -13,11 +14,13 @@
 
 SP_BEGIN_NAMESPACE
 
-SP_INLINE RayState sp_emit_ray(StepSource source, uint source_slot, uint ray_index, uint seed, uint step) {
+// A new ray of `source` (entry `source_slot` of the step's table) along
+// `dir`, emitted into guide cell `emit_cell` (sp_guide.h sp_source_emission).
+SP_INLINE RayState sp_emit_ray(StepSource source, uint source_slot, uint ray_index, vec3 dir, uint emit_cell) {
   RayState r;
   r.origin = source.position;
   r.energy = source.loudness;
-  r.dir = sp_emission_direction(seed, step, ray_index);
+  r.dir = dir;
   r.travelled = 0.0f;
   r.entry = vec3(0.0f, 0.0f, 0.0f);
   r.entry_layer = 0u;
@@ -31,7 +34,7 @@ SP_INLINE RayState sp_emit_ray(StepSource source, uint source_slot, uint ray_ind
   r.loudness = source.loudness;
   r.entry_triangle = SP_INVALID;
   r.diffractions = 0u;
-  r.pad0 = 0u;
+  r.emit_cell = emit_cell;
   r.pad1 = 0u;
   return r;
 }
@@ -50,11 +53,12 @@ SP_INLINE float sp_active_reach(RayState r, SimParams p) {
 // a touch behind it (those of a solid touching the entry face) through W_max.
 SP_INLINE float sp_matter_tmin() { return -SP_CONTACT_TOLERANCE; }
 
-// Writes every field of `ind` in place. (Not a returned struct: on the CPU the
+// Writes every field of `ind` in place; `sent` is the energy the spot sends
+// towards the listener (sp_sent_energy), which the connect pass completes. (Not a returned struct: on the CPU the
 // caller's indicator is where it stays, and a whole-struct copy of fields just
 // stored one by one stalls on store-to-load forwarding.)
 SP_INLINE void sp_make_indicator(SP_OUT(Indicator) ind, uint kind, RayState r, StepSource source, vec3 position,
-                                 vec3 normal, SimParams p) {
+                                 vec3 normal, SimParams p, float sent) {
   ind.position = position;
   ind.energy = r.energy;
   ind.normal = normal;
@@ -72,6 +76,12 @@ SP_INLINE void sp_make_indicator(SP_OUT(Indicator) ind, uint kind, RayState r, S
   ind.step = p.step;
   ind.ray_index = r.ray_index;
   ind.iteration = r.casts;
+  ind.arrival = sp_arrival(position, p);
+  ind.heard = sent;
+  ind.emit_cell = r.emit_cell;
+  ind.source_slot = r.source;
+  ind.toward = 0.0f;
+  ind.pad0 = 0u;
 }
 
 SP_INLINE vec3 sp_offset_point(vec3 p, vec3 dir, float distance) {
@@ -114,7 +124,8 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
   vec3 position = sp_offset_point(r.origin, r.dir, found.t);
   vec3 normal = crossing == SP_CROSSING_LEAVE ? -tri.normal
                                               : tri.normal;  // towards the ray's side (a sheet's back is a front too)
-  sp_make_indicator(ind, SP_INDICATOR_HIT, r, source, position, normal, p);
+  sp_make_indicator(ind, SP_INDICATOR_HIT, r, source, position, normal, p,
+                    sp_sent_energy(SP_INDICATOR_HIT, r.energy, layer, p));
   outcome |= SP_OUTCOME_INDICATOR;
   // Diffractions count as interactions: they key the random numbers and
   // max_bounces bounds them (without diffraction the sum is the paper's).
@@ -157,7 +168,7 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
       r.state = SP_RAY_DEAD;
       return outcome;
     }
-    sp_make_indicator(sheet_exit, SP_INDICATOR_EXIT, r, source, position, -normal, p);
+    sp_make_indicator(sheet_exit, SP_INDICATOR_EXIT, r, source, position, -normal, p, r.energy);
     outcome |= SP_OUTCOME_SHEET_EXIT;
     r.origin = sp_offset_point(position, r.dir, SP_EPSILON);
   } else {
@@ -193,7 +204,7 @@ SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, CastResult found, BvhTr
   // Towards where it leaves to: the exit face's front, unless only a
   // disagreeing winding let the ray out.
   vec3 normal = sp_crossing(tri.normal, r.dir) == SP_CROSSING_ENTER ? -tri.normal : tri.normal;
-  sp_make_indicator(ind, SP_INDICATOR_EXIT, r, source, position, normal, p);
+  sp_make_indicator(ind, SP_INDICATOR_EXIT, r, source, position, normal, p, r.energy);
   r.state = SP_RAY_ACTIVE;
   r.origin = sp_offset_point(position, r.dir, SP_EPSILON);
   return SP_OUTCOME_INDICATOR;

@@ -85,6 +85,10 @@
 // The cast reached SP_MAX_CAST_PACKETS and ended: the ray died.
 #define SP_OUTCOME_CUT_SHORT 256u
 
+// SimParams::cues (docs/model.md#cues-for-the-player).
+#define SP_CUES_LISTEN 1u  // every spot's way to the listener is cast: `heard`, `arrival`, `toward`
+#define SP_CUES_GUIDE 2u   // a share of each source's rays follows its guide (sp_guide.h)
+
 // CastResult::flags.
 #define SP_CAST_CUT_SHORT 1u
 
@@ -148,11 +152,14 @@ struct SimParams {
   float diffraction_reach;  // metres from an edge within which a struck ray may turn
   float diffraction_width;  // 1 / (2k): the deflection width sigma(a) = min(pi/2, width / a)
   float diffraction_gain;   // fraction of its energy a diffracted ray keeps, in [0, 1]
+  // Cues for the player (docs/model.md#cues-for-the-player).
+  uint cues;          // SP_CUES_*
+  float toward_cos;   // cos of the toward lobe's half-angle (cues.toward_angle)
+  float guide_share;  // share of each source's rays drawn from its guide, in [0, 1]
+  vec3 listener;      // where the player hears (and, first person, sees) from
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
-SP_CHECK_LAYOUT(sizeof(SimParams) == 64 && offsetof(SimParams, diffraction) == 32 && offsetof(SimParams, diffraction_gain) == 48);
+SP_CHECK_LAYOUT(sizeof(SimParams) == 80 && offsetof(SimParams, diffraction) == 32 && offsetof(SimParams, diffraction_gain) == 48 && offsetof(SimParams, cues) == 52 && offsetof(SimParams, listener) == 64);
 
 // The edges of one triangle that sound can bend round, in leaf order like
 // BvhTriangle (src/bvh/diffraction_edges.h). Edge i runs from vertex i to
@@ -200,7 +207,7 @@ struct RayState {
   float loudness;       // E0 of its source
   uint entry_triangle;  // leaf-order index of the entry face while ResolvingPenetration
   uint diffractions;    // times the ray turned at an edge (docs/model.md#diffraction)
-  uint pad0;
+  uint emit_cell;       // the guide cell of its emission direction (sp_guide.h)
   uint pad1;
 };
 SP_CHECK_LAYOUT(sizeof(RayState) == 96 && offsetof(RayState, dir) == 16 && offsetof(RayState, entry) == 32 && offsetof(RayState, entry_layer) == 44 && offsetof(RayState, state) == 48 && offsetof(RayState, loudness) == 76 && offsetof(RayState, entry_triangle) == 80);
@@ -224,8 +231,20 @@ struct Indicator {
   uint step;
   uint ray_index;
   uint iteration;
+  // What reaches the player (docs/model.md#cues-for-the-player): the unit
+  // direction from the listener to the spot, the way its sound arrives, and
+  // the energy that arrives there along it (0: the listener does not hear
+  // this spot: its surface faces away, the way is blocked, or too little is
+  // left). While a step runs, `heard` holds the energy the spot sends
+  // towards the listener before the way there is cast.
+  vec3 arrival;
+  float heard;
+  uint emit_cell;    // the guide cell the ray was emitted into (sp_guide.h)
+  uint source_slot;  // the source's entry in its step's source table
+  float toward;      // in [0, 1]: how nearly `arrival` points at the source (1: on the line), 0 when not heard
+  uint pad0;
 };
-SP_CHECK_LAYOUT(sizeof(Indicator) == 96 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 && offsetof(Indicator, dir) == 48 && offsetof(Indicator, path_length) == 60 && offsetof(Indicator, kind) == 64 && offsetof(Indicator, iteration) == 92 && alignof(Indicator) == 4);
+SP_CHECK_LAYOUT(sizeof(Indicator) == 128 && offsetof(Indicator, normal) == 16 && offsetof(Indicator, color) == 32 && offsetof(Indicator, dir) == 48 && offsetof(Indicator, path_length) == 60 && offsetof(Indicator, kind) == 64 && offsetof(Indicator, iteration) == 92 && offsetof(Indicator, arrival) == 96 && offsetof(Indicator, heard) == 108 && offsetof(Indicator, emit_cell) == 112 && offsetof(Indicator, toward) == 120 && alignof(Indicator) == 4);
 
 // Closest-hit query result; triangle is a leaf-order index or SP_INVALID.
 // cut_short: 1 when the walk ended at SP_MAX_CAST_PACKETS (triangle is then

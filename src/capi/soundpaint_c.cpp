@@ -47,6 +47,11 @@ sp_indicator to_c(const sp::Indicator& in) {
   out.direction[1] = in.dir.y;
   out.direction[2] = in.dir.z;
   out.diffractions = in.diffractions;
+  out.heard_energy = in.heard_energy;
+  out.arrival[0] = in.arrival.x;
+  out.arrival[1] = in.arrival.y;
+  out.arrival[2] = in.arrival.z;
+  out.toward = in.toward;
   return out;
 }
 

@@ -75,6 +75,11 @@ Result<bool> IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
           append_float(out, ind.dir.y);
           append_float(out, ind.dir.z);
           append_uint(out, ind.diffractions);
+          append_float(out, ind.heard_energy);
+          append_float(out, ind.arrival.x);
+          append_float(out, ind.arrival.y);
+          append_float(out, ind.arrival.z);
+          append_float(out, ind.toward);
           out.back() = '\n';
         }
         impl_->file.write(out);

@@ -16,10 +16,13 @@
 
 namespace sp {
 
-// The exact CSV header of `soundpaint simulate --indicators` (contract).
+// The exact CSV header of `soundpaint simulate --indicators`: the contract's
+// columns, then ours (readers go by name): what reaches the player
+// (docs/model.md#cues-for-the-player): the energy heard at the listener, the
+// direction the sound arrives from, and how nearly it points at its source.
 inline constexpr const char* kIndicatorCsvHeader =
     "step,kind,source,x,y,z,nx,ny,nz,energy,bounces,penetrations,path_length,intensity,size,r,g,b,dx,dy,dz,"
-    "diffractions";
+    "diffractions,heard,ax,ay,az,toward";
 
 // Streams indicators into a CSV file; the target file appears only after
 // commit(). Errors are ErrorCode::Io naming the path; after one, the writer

@@ -67,4 +67,20 @@ void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVec
   }
 }
 
+void connect_indicators(const TraceContext& context, std::span<shader::Indicator> indicators, TraceCounters& counters) {
+  using namespace shader;
+  const SimParams& p = context.params;
+  for (shader::Indicator& ind : indicators) {
+    const Connection c = sp_connection(ind, p);
+    bool open = false;
+    if (c.candidate != 0u) {
+      const HitInfo hit = context.embree ? context.embree->closest_hit(c.origin, c.dir, 0.0f, c.distance)
+                                         : closest_hit(*context.bvh, c.origin, c.dir, 0.0f, c.distance);
+      open = hit.triangle == SP_INVALID && hit.cut_short == 0u;
+      counters.connections += 1;
+    }
+    sp_finish_connection(ind, c, open, context.sources[ind.source_slot], p);
+  }
+}
+
 }  // namespace sp

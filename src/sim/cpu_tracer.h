@@ -28,7 +28,8 @@ inline void accumulate(LayerCounters& into, const LayerCounters& more) {
 // Per-worker counters, summed after the step (integer sums: order-free).
 struct TraceCounters {
   std::uint64_t casts = 0;
-  std::uint64_t cut_short = 0;  // casts that ended at SP_MAX_LEAF_VISITS
+  std::uint64_t cut_short = 0;    // casts that ended at SP_MAX_LEAF_VISITS
+  std::uint64_t connections = 0;  // casts from a spot to the listener (sp_connect.h)
   std::vector<LayerCounters> layers;
 };
 
@@ -47,5 +48,11 @@ struct TraceContext {
 // Traces `ray` (already emitted) to its end, appending its indicators.
 void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVector<shader::Indicator>& indicators,
                TraceCounters& counters);
+
+// Casts each of `indicators`' way to the listener and completes what it
+// hears (sp_connect.h), when params.cues asks for it. The cast is the
+// closest-hit query of the forward casts (Embree's when the context has
+// it), so it finds what the GPU's finds.
+void connect_indicators(const TraceContext& context, std::span<shader::Indicator> indicators, TraceCounters& counters);
 
 }  // namespace sp

@@ -20,6 +20,9 @@ static_assert(offsetof(Indicator, dir) == offsetof(shader::Indicator, dir));
 static_assert(offsetof(Indicator, path_length) == offsetof(shader::Indicator, path_length));
 static_assert(offsetof(Indicator, kind) == offsetof(shader::Indicator, kind));
 static_assert(offsetof(Indicator, iteration) == offsetof(shader::Indicator, iteration));
+static_assert(offsetof(Indicator, arrival) == offsetof(shader::Indicator, arrival));
+static_assert(offsetof(Indicator, heard_energy) == offsetof(shader::Indicator, heard));
+static_assert(offsetof(Indicator, toward) == offsetof(shader::Indicator, toward));
 static_assert(kIndicatorHit == SP_INDICATOR_HIT && kIndicatorExit == SP_INDICATOR_EXIT);
 
 inline Indicator to_public(const shader::Indicator& indicator) { return std::bit_cast<Indicator>(indicator); }
