@@ -122,11 +122,12 @@ std::vector<CastRay> emitted_rays(const sp::World& world, std::size_t count) {
   for (std::uint64_t step = 0; rays.size() < count; ++step) {
     const sp::StepPlan plan = sp::plan_step(world, step, world.listener, no_play);
     if (step > 100000 && rays.empty()) break;  // no source ever plays
-    const SimParams params = sp::make_sim_params(world.config, step);
+    const SimParams params = sp::make_sim_params(world.config, step, plan.listener);
     for (std::uint32_t slot = 0; slot < plan.sources.size(); ++slot) {
       const StepSource& source = plan.sources[slot];
       for (std::uint32_t i = source.first_ray; i < source.first_ray + source.ray_count && rays.size() < count; ++i) {
-        const RayState ray = sp_emit_ray(source, slot, i, params.seed, params.step);
+        const glm::vec3 dir = sp_emission_direction(params.seed, params.step, i);
+        const RayState ray = sp_emit_ray(source, slot, i, dir, 0u);
         rays.push_back({ray.origin, 0.0f, ray.dir, sp_active_reach(ray, params)});
       }
     }

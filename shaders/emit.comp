@@ -1,8 +1,10 @@
 #version 460
-// Stage (a): emits the step's rays from the active sources into queue 0 and
-// resets the per-step counters (this kernel runs first in every step).
+// Stage (a): emits the step's rays from the active sources into queue 0
+// (uniformly, or a share from each source's guide: sp_guide.h) and resets
+// the per-step counters (this kernel runs first in every step).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
+#include "sp_guide.h"
 #include "sp_ray_model.h"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
@@ -20,6 +22,7 @@ void main() {
     control.step_indicators = 0u;
     control.step_casts = 0u;
     control.step_cut_short = 0u;
+    control.step_connections = 0u;
   }
   if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
   if (i >= total) return;
@@ -31,6 +34,8 @@ void main() {
     uint mid = (lo + hi + 1u) / 2u;
     if (step_sources[mid].first_ray <= i) lo = mid; else hi = mid - 1u;
   }
-  rays[i] = sp_emit_ray(step_sources[lo], lo, i, step_input.params.seed, step_input.params.step);
+  uint cell;
+  vec3 dir = sp_source_emission(step_sources[lo], i, step_input.params, cell);
+  rays[i] = sp_emit_ray(step_sources[lo], lo, i, dir, cell);
   queue_entries[i] = i;
 }

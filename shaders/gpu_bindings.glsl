@@ -16,11 +16,12 @@ layout(std430, binding = SP_BINDING_RAYS) buffer RaysBuffer { RayState rays[]; }
 layout(std430, binding = SP_BINDING_HITS) buffer HitsBuffer { CastResult hits[]; };
 layout(std430, binding = SP_BINDING_QUEUES) buffer QueuesBuffer { uint queue_entries[]; };
 layout(std430, binding = SP_BINDING_CONTROL) buffer ControlBuffer { Control control; };
-layout(std430, binding = SP_BINDING_RING) writeonly buffer RingBuffer { Indicator ring[]; };
+layout(std430, binding = SP_BINDING_RING) buffer RingBuffer { Indicator ring[]; };
 layout(std430, binding = SP_BINDING_CAPTURE) buffer CaptureBuffer { Indicator capture[]; };
 layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint counters[]; };
 layout(std430, binding = SP_BINDING_ADMISSION) buffer AdmissionBuffer { uint admission_histogram[]; };
 layout(std430, binding = SP_BINDING_EDGES) readonly buffer EdgesBuffer { TriangleEdges triangle_edges[]; };
+layout(std430, binding = SP_BINDING_GUIDE) buffer GuideBuffer { uint guide[]; };
 
 layout(push_constant) uniform Push { WavefrontPush push; };
 

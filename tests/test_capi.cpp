@@ -279,9 +279,11 @@ constexpr std::uint32_t kRoomSeed = 11;
 
 // No sources: the tests add them. dt 0.1 s keeps step times readable; with
 // no bounces and no air loss each ray makes exactly one hit indicator.
+// Every ray goes out uniformly (no guide), so that the hits of every step
+// are those the emission function predicts.
 const char* const kRoomConfig = R"({
   "ray_budget": 48, "max_bounces": 0, "air_attenuation": 0, "seed": 11, "dt": 0.1,
-  "listener": { "position": [0, 1.5, 0] }
+  "listener": { "position": [0, 1.5, 0] }, "cues": { "guide_share": 0 }
 })";
 
 // Two triangles per face, six faces, one layer; every face's front towards

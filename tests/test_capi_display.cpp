@@ -338,9 +338,11 @@ const char* const kLayerNames[] = {"concrete"};
 // seldom overlap; large spots, so that size_scale grows them past the
 // minimum on-screen size; a saturated colour of the source's own, whatever
 // the palette. Its category is the default, "sound".
+// Rays go out uniformly (no guide): a guided step sends most of them where
+// the first one's spots were heard, some to centres above the picture.
 const char* const kConfig = R"({
   "ray_budget": 16, "max_bounces": 1, "seed": 5, "dt": 0.1, "indicator_size": 0.5,
-  "listener": { "position": [0, 0, 0] },
+  "listener": { "position": [0, 0, 0] }, "cues": { "guide_share": 0 },
   "sources": [ { "position": [0, 0, 0], "color": [1.0, 0.2, 0.1] } ]
 })";
 

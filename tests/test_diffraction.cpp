@@ -80,8 +80,8 @@ struct HalfPlane {
 
   // Ray `index` falling straight down onto the screen a metres from its edge.
   std::vector<shader::Indicator> drop(float a, std::uint32_t index, TraceCounters& counters) const {
-    TraceContext context{&world.geometry->bvh, layers, {&source, 1}, make_sim_params(config, 0)};
-    shader::RayState ray = shader::sp_emit_ray(source, 0, index, config.seed, 0);
+    TraceContext context{&world.geometry->bvh, layers, {&source, 1}, make_sim_params(config, 0, world.listener)};
+    shader::RayState ray = shader::sp_emit_ray(source, 0, index, glm::vec3(0.0f, 0.0f, -1.0f), 0u);
     ray.origin = glm::vec3(-a, 0.0f, 1.0f);
     ray.dir = glm::vec3(0.0f, 0.0f, -1.0f);
     counters.layers.assign(world.layer_names.size(), {});

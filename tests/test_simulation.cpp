@@ -307,7 +307,7 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
   ASSERT_EQ(plan.total_rays, 1000u);
   CpuStepRunner runner(2, world.layer_names.size());
   CpuStepOutput out;
-  runner.run(world.geometry->bvh, make_layer_table(world), plan, make_sim_params(config, 0), 1.0f, out);
+  runner.run(world.geometry->bvh, make_layer_table(world), plan, make_sim_params(config, 0, plan.listener), 1.0f, out);
 
   const std::vector<shader::Indicator> all = out.canonical();
   ASSERT_EQ(all.size(), out.indicator_count());
@@ -346,7 +346,8 @@ TEST(Simulation, StepOutputMergesAndAdmitsAsOneCanonicalList) {
     source.ray_count = std::min(source.ray_count, small.total_rays - first);
     first += source.ray_count;
   }
-  runner.run(world.geometry->bvh, make_layer_table(world), small, make_sim_params(config, 1), 1.0f, out);
+  runner.run(world.geometry->bvh, make_layer_table(world), small, make_sim_params(config, 1, small.listener), 1.0f,
+             out);
   const std::vector<shader::Indicator> fewer = out.canonical();
   ASSERT_EQ(fewer.size(), out.indicator_count());
   ASSERT_LT(fewer.size(), all.size());

@@ -77,6 +77,27 @@ inline float diffraction_reach(const DiffractionSettings& d) {
   return d.reach ? *d.reach : kSpeedOfSound / (2.0f * d.frequency);
 }
 
+// Cues for the player (docs/model.md#cues-for-the-player): what the ring
+// keeps and where rays go, so that the spots a player sees say where each
+// sound is. The config's `cues`. {"listen": false} (guiding then off too)
+// gives the earlier model: the ring keeps spots by E / E0 alone and rays
+// go out uniformly, as in the paper.
+struct CueSettings {
+  // Cast each spot's way to the listener: the energy heard there and the
+  // direction it arrives from (Indicator::heard_energy, ::arrival), and let
+  // the ring keep what the player hears first.
+  bool listen = true;
+  // Share of each source's rays, in [0, 1], drawn from its guide (the
+  // emission directions whose spots the player heard); the rest go out
+  // uniformly. Needs `listen`.
+  float guide_share = 0.5f;
+  // Degrees in (0, 180]: a heard spot within this angle of its source, as
+  // the listener sees both, points the player at it; the ring keeps such
+  // spots first, the nearer the line the sooner, an even floor for every
+  // source that has any.
+  float toward_angle = 30.0f;
+};
+
 struct Config {
   float scan_radius = 50.0f;       // R_scan, metres
   std::uint32_t ray_budget = 500;  // new rays per step, all sources together
@@ -100,6 +121,7 @@ struct Config {
   std::vector<SourceDesc> sources;                // added after the scene's sources
   DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
   DiffractionSettings diffraction;                // sound bending round edges (docs/model.md#diffraction)
+  CueSettings cues;                               // what reaches the player (docs/model.md#cues-for-the-player)
   CpuTraversal cpu_traversal = CpuTraversal::Soundpaint;
 };
 

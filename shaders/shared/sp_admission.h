@@ -36,14 +36,20 @@ SP_INLINE uint sp_admission_count(SP_ADMISSION_ARGS_DECL uint from, uint to) {
   return count;
 }
 
+SP_INLINE uint sp_class_count(SP_ADMISSION_ARGS_DECL uint c) {
+  uint first = sp_section_first(c);
+  return sp_admission_count(SP_ADMISSION_ARGS first, first + sp_section_levels(c));
+}
+
 // The lowest bin of class c's section such that the indicators in it and
 // above it (within the section) number at most `share`; the section's end
 // when even its top bin holds more.
 SP_INLINE uint sp_class_threshold(SP_ADMISSION_ARGS_DECL uint c, uint share) {
-  uint first = c * SP_ADMISSION_LEVELS;
+  uint first = sp_section_first(c);
+  uint end = first + sp_section_levels(c);
   uint admitted = 0u;
-  uint threshold = first + SP_ADMISSION_LEVELS;
-  for (uint b = first + SP_ADMISSION_LEVELS; b > first; --b) {
+  uint threshold = end;
+  for (uint b = end; b > first; --b) {
     uint more = admitted + admission_histogram[b - 1u];
     if (more > share) break;
     admitted = more;
@@ -52,16 +58,17 @@ SP_INLINE uint sp_class_threshold(SP_ADMISSION_ARGS_DECL uint c, uint share) {
   return threshold;
 }
 
-// Each class's share of `quota` given how many indicators it has: an equal
-// third each, what a class cannot use passed on to the others, the most
-// important first (direct, through walls, reflected). Returns share[c].
+// The unheard classes' shares of `quota` given how many indicators each
+// has: an equal third each, what a class cannot use passed on to the
+// others, the most important first (direct, through walls, reflected).
+// Returns share[c].
 SP_INLINE uint sp_class_share(uint quota, uint c, uint count0, uint count1, uint count2) {
   uint counts[3] = {count0, count1, count2};
   uint shares[3];
-  uint base = quota / SP_ADMISSION_CLASSES;
+  uint base = quota / 3u;
   uint left = quota;
   for (uint k = 0u; k < 3u; ++k) {
-    shares[k] = min(counts[k], base + (k < quota % SP_ADMISSION_CLASSES ? 1u : 0u));
+    shares[k] = min(counts[k], base + (k < quota % 3u ? 1u : 0u));
     left -= shares[k];
   }
   for (uint k = 0u; k < 3u; ++k) {
@@ -72,20 +79,52 @@ SP_INLINE uint sp_class_share(uint quota, uint c, uint count0, uint count1, uint
   return shares[c];
 }
 
+// Sets class c's plan for a share of `share` indicators.
+SP_INLINE void sp_plan_class(SP_ADMISSION_ARGS_DECL_MUT uint c, uint share) {
+  uint threshold = sp_class_threshold(SP_ADMISSION_ARGS c, share);
+  uint end = sp_section_first(c) + sp_section_levels(c);
+  admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c] = threshold;
+  admission_histogram[SP_ADMISSION_PLAN_REMAINING + c] = share - sp_admission_count(SP_ADMISSION_ARGS threshold, end);
+}
+
 // Fills the plan's thresholds and remainders from the histogram of
-// admission bins.
-SP_INLINE void sp_plan_admission(SP_ADMISSION_ARGS_DECL_MUT uint quota) {
-  uint count0 = sp_admission_count(SP_ADMISSION_ARGS 0u, SP_ADMISSION_LEVELS);
-  uint count1 = sp_admission_count(SP_ADMISSION_ARGS SP_ADMISSION_LEVELS, 2u * SP_ADMISSION_LEVELS);
-  uint count2 = sp_admission_count(SP_ADMISSION_ARGS 2u * SP_ADMISSION_LEVELS, SP_ADMISSION_BINS);
-  for (uint c = 0u; c < SP_ADMISSION_CLASSES; ++c) {
-    uint share = sp_class_share(quota, c, count0, count1, count2);
-    uint threshold = sp_class_threshold(SP_ADMISSION_ARGS c, share);
-    uint section_end = (c + 1u) * SP_ADMISSION_LEVELS;
-    admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c] = threshold;
-    admission_histogram[SP_ADMISSION_PLAN_REMAINING + c] =
-        share - sp_admission_count(SP_ADMISSION_ARGS threshold, section_end);
+// admission bins, for at most `budget` admissions (sp_admission_budget):
+// first the source classes, max-min fair (each gets as many as it has, up
+// to an even share of what is left, rounds repeated while any is left and
+// any class wants more; the last units one each to the lowest slots); then
+// the unheard classes by thirds; then spots heard away from their source.
+SP_INLINE void sp_plan_admission(SP_ADMISSION_ARGS_DECL_MUT uint budget) {
+  uint counts[SP_ADMISSION_SOURCE_CLASSES];
+  uint shares[SP_ADMISSION_SOURCE_CLASSES];
+  uint wanting = 0u;
+  for (uint c = 0u; c < SP_ADMISSION_SOURCE_CLASSES; ++c) {
+    counts[c] = sp_class_count(SP_ADMISSION_ARGS c);
+    shares[c] = 0u;
+    if (counts[c] > 0u) wanting += 1u;
   }
+  uint left = budget;
+  while (left > 0u && wanting > 0u) {
+    uint each = left / wanting;
+    for (uint c = 0u; c < SP_ADMISSION_SOURCE_CLASSES && left > 0u; ++c) {
+      if (shares[c] == counts[c]) continue;
+      uint give = min(counts[c] - shares[c], max(each, 1u));
+      shares[c] += give;
+      left -= give;
+      if (shares[c] == counts[c]) wanting -= 1u;
+    }
+  }
+  for (uint c = 0u; c < SP_ADMISSION_SOURCE_CLASSES; ++c) sp_plan_class(SP_ADMISSION_ARGS c, shares[c]);
+  uint count0 = sp_class_count(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_DIRECT);
+  uint count1 = sp_class_count(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_THROUGH);
+  uint count2 = sp_class_count(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_REFLECTED);
+  uint unheard = left;
+  for (uint k = 0u; k < 3u; ++k) {
+    uint share = sp_class_share(unheard, k, count0, count1, count2);
+    sp_plan_class(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_DIRECT + k, share);
+    left -= share;
+  }
+  uint elsewhere = min(sp_class_count(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_ELSEWHERE), left);
+  sp_plan_class(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_ELSEWHERE, elsewhere);
 }
 
 // With the histogram now counting tie-break bins of each class's
@@ -101,7 +140,7 @@ SP_INLINE void sp_plan_tiebreak(SP_ADMISSION_ARGS_DECL_MUT uint class_count) {
 // admitted under its step's plan: at or above its class's threshold, or in
 // the bin just below it with a tie-break bin at or above that threshold.
 SP_INLINE bool sp_admitted(SP_ADMISSION_ARGS_DECL uint bin, uint tiebreak) {
-  uint c = bin / SP_ADMISSION_LEVELS;
+  uint c = sp_bin_class(bin);
   uint threshold = admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c];
   return bin >= threshold || (bin + 1u == threshold && tiebreak >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]);
 }
@@ -109,7 +148,7 @@ SP_INLINE bool sp_admitted(SP_ADMISSION_ARGS_DECL uint bin, uint tiebreak) {
 // Whether an indicator in bin `bin` is in its class's overflowing bin, the
 // one whose tie-break bins are counted.
 SP_INLINE bool sp_in_tiebreak_bin(SP_ADMISSION_ARGS_DECL uint bin) {
-  return bin + 1u == admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + bin / SP_ADMISSION_LEVELS];
+  return bin + 1u == admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + sp_bin_class(bin)];
 }
 
 SP_END_NAMESPACE

@@ -19,7 +19,8 @@
 #define SP_BINDING_COUNTERS 10
 #define SP_BINDING_ADMISSION 11
 #define SP_BINDING_EDGES 12
-#define SP_BINDING_COUNT 13
+#define SP_BINDING_GUIDE 13
+#define SP_BINDING_COUNT 14
 
 // Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
 // order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as
@@ -91,7 +92,8 @@ struct Control {
   uint step_cut_short;
   uint total_cut_short_lo;
   uint total_cut_short_hi;
-  uint pad0;
+  // Casts from spots to the listener (sp_connect.h): this step's.
+  uint step_connections;
 };
 SP_CHECK_LAYOUT(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 
@@ -104,12 +106,15 @@ struct StepInput {
   uint layer_count;
   uint ring_quota;           // indicators the ring admits per step (sp_ring.h)
   float inv_indicator_size;  // 1 / indicator_size, 0 when it is 0
-  uint pad0;
-  uint pad1;
+  float dt;                  // seconds per step, as the liveness rule takes it
+  float lifetime;            // indicator_lifetime, as the liveness rule takes it
 };
-SP_CHECK_LAYOUT(sizeof(StepInput) == 96 && sizeof(StepInput) % 16 == 0);
+SP_CHECK_LAYOUT(sizeof(StepInput) == 112 && sizeof(StepInput) % 16 == 0);
 
 // Push constants of the admission kernel (admit.comp).
+// The histogram phase first casts each indicator's way to the listener
+// (sp_connect.h) and adds what it is worth to its source's guide; the
+// select phase also folds each step source's guide (sp_guide.h).
 #define SP_ADMIT_HISTOGRAM 0u
 #define SP_ADMIT_SELECT 1u
 #define SP_ADMIT_TIEBREAK_HISTOGRAM 2u

@@ -17,6 +17,7 @@
 #ifndef SP_RING_H
 #define SP_RING_H
 
+#include "sp_connect.h"
 #include "sp_types.h"
 
 // The display never shows a spot for less than this (seconds), whatever
@@ -26,17 +27,28 @@
 // with it, so a spot is not overwritten before.
 #define SP_MIN_DISPLAY_LIFETIME (1.0f / 3.0f)
 
-// Admission sorts a step's indicators into three classes, each with its
-// own share of the quota, so that sound through walls is not crowded out by
-// the louder sound in the source's own room: direct sound (first hits),
-// sound that crossed matter (exits, and anything after a penetration), and
-// the rest (reflections, diffraction). Within a class, bins by E / E0.
-#define SP_ADMISSION_CLASSES 3u
+// Admission sorts a step's indicators into classes, each a section of
+// admission bins by a level of worth (docs/model.md#the-ring-spots-that-live-out-their-lifetime):
+// - heard toward their source (Indicator::toward > 0), a class per source
+//   slot (modulo SP_ADMISSION_SOURCE_CLASSES), so that every audible source
+//   keeps a floor: the step's admissions are shared among these classes
+//   first, evenly as far as each has spots (max-min fair). Level: the
+//   energy heard relative to E0 times `toward`.
+// - heard but away from their source: what is left goes to them next, by
+//   the energy heard relative to E0.
+// - not heard: direct sound (first hits), sound that crossed matter (exits,
+//   and anything after a penetration) and the rest (reflections,
+//   diffraction), an equal share each of what is left, by E / E0.
+#define SP_ADMISSION_SOURCE_CLASSES 64u
+#define SP_ADMISSION_TOWARD_LEVELS 64u
 #define SP_ADMISSION_LEVELS 512u
-#define SP_ADMISSION_BINS (SP_ADMISSION_CLASSES * SP_ADMISSION_LEVELS)
-#define SP_ADMISSION_CLASS_DIRECT 0u
-#define SP_ADMISSION_CLASS_THROUGH 1u
-#define SP_ADMISSION_CLASS_REFLECTED 2u
+#define SP_ADMISSION_CLASS_ELSEWHERE SP_ADMISSION_SOURCE_CLASSES
+#define SP_ADMISSION_CLASS_DIRECT (SP_ADMISSION_SOURCE_CLASSES + 1u)
+#define SP_ADMISSION_CLASS_THROUGH (SP_ADMISSION_SOURCE_CLASSES + 2u)
+#define SP_ADMISSION_CLASS_REFLECTED (SP_ADMISSION_SOURCE_CLASSES + 3u)
+#define SP_ADMISSION_CLASSES (SP_ADMISSION_SOURCE_CLASSES + 4u)
+#define SP_ADMISSION_TOWARD_BINS (SP_ADMISSION_SOURCE_CLASSES * SP_ADMISSION_TOWARD_LEVELS)
+#define SP_ADMISSION_BINS (SP_ADMISSION_TOWARD_BINS + 4u * SP_ADMISSION_LEVELS)
 
 SP_BEGIN_NAMESPACE
 
@@ -79,25 +91,57 @@ SP_INLINE bool sp_is_direct(Indicator ind) {
 }
 
 SP_INLINE uint sp_admission_class(Indicator ind) {
+  if (ind.heard > 0.0f) {
+    return ind.toward > 0.0f ? ind.source_slot % SP_ADMISSION_SOURCE_CLASSES : SP_ADMISSION_CLASS_ELSEWHERE;
+  }
   if (sp_is_direct(ind)) return SP_ADMISSION_CLASS_DIRECT;
   if (ind.kind == SP_INDICATOR_EXIT || ind.penetrations > 0u) return SP_ADMISSION_CLASS_THROUGH;
   return SP_ADMISSION_CLASS_REFLECTED;
 }
 
-// The admission bin of `ind`: its class's section, then its level of
-// E / E0. inv_indicator_size = 1 / indicator_size (0 when the size is 0),
-// so that size * inv_indicator_size is E / E0 with multiplications only,
-// which round alike on every device.
+// Class c's section of admission bins: its first bin and its levels.
+SP_INLINE uint sp_section_first(uint c) {
+  return c < SP_ADMISSION_SOURCE_CLASSES
+             ? c * SP_ADMISSION_TOWARD_LEVELS
+             : SP_ADMISSION_TOWARD_BINS + (c - SP_ADMISSION_SOURCE_CLASSES) * SP_ADMISSION_LEVELS;
+}
+SP_INLINE uint sp_section_levels(uint c) {
+  return c < SP_ADMISSION_SOURCE_CLASSES ? SP_ADMISSION_TOWARD_LEVELS : SP_ADMISSION_LEVELS;
+}
+SP_INLINE uint sp_bin_class(uint bin) {
+  return bin < SP_ADMISSION_TOWARD_BINS
+             ? bin / SP_ADMISSION_TOWARD_LEVELS
+             : SP_ADMISSION_SOURCE_CLASSES + (bin - SP_ADMISSION_TOWARD_BINS) / SP_ADMISSION_LEVELS;
+}
+
+// A worth in [0, 1] as one of `levels` levels.
+SP_INLINE uint sp_admission_level(float worth, uint levels) {
+  SP_PRECISE float scaled = min(max(worth, 0.0f), 1.0f) * float(levels - 1u);
+  return uint(scaled);
+}
+
+// The admission bin of `ind`: its class's section, then its level of worth.
+// inv_indicator_size = 1 / indicator_size (0 when the size is 0), so that
+// size * inv_indicator_size is E / E0 with multiplications only, which
+// round alike on every device.
 SP_INLINE uint sp_admission_bin(Indicator ind, float inv_indicator_size) {
-  SP_PRECISE float relative = ind.size * inv_indicator_size;
-  SP_PRECISE float scaled = min(max(relative, 0.0f), 1.0f) * float(SP_ADMISSION_LEVELS - 1u);
-  uint level = uint(scaled);
-  return sp_admission_class(ind) * SP_ADMISSION_LEVELS + level;
+  uint c = sp_admission_class(ind);
+  float worth;
+  if (c < SP_ADMISSION_SOURCE_CLASSES) {
+    SP_PRECISE float toward_worth = sp_heard_relative(ind, inv_indicator_size) * ind.toward;
+    worth = toward_worth;
+  } else if (c == SP_ADMISSION_CLASS_ELSEWHERE) {
+    worth = sp_heard_relative(ind, inv_indicator_size);
+  } else {
+    SP_PRECISE float relative = ind.size * inv_indicator_size;
+    worth = relative;
+  }
+  return sp_section_first(c) + sp_admission_level(worth, sp_section_levels(c));
 }
 
 // Within the bin where a class's share runs out, indicators are admitted by
 // a tie-break bin in their class's section: a hash of what tells them apart
-// (ray, step, event) over SP_ADMISSION_LEVELS, so that a bin larger than the whole quota (a
+// (ray, step, event) over the section's levels, so that a bin larger than the whole quota (a
 // small ring, or many spots of equal energy) still yields its share rather
 // than nothing, in an order both backends agree on.
 SP_INLINE uint sp_admission_tiebreak(Indicator ind) {
@@ -108,7 +152,17 @@ SP_INLINE uint sp_admission_tiebreak(Indicator ind) {
   h ^= h >> 15u;
   h *= 0x846CA68Bu;
   h ^= h >> 16u;
-  return sp_admission_class(ind) * SP_ADMISSION_LEVELS + h % SP_ADMISSION_LEVELS;
+  uint c = sp_admission_class(ind);
+  return sp_section_first(c) + h % sp_section_levels(c);
+}
+
+// How many of a step's indicators the ring may admit: its quota, or all of
+// its free room (slots not live after this step's admission), whichever is
+// more, so that a ring with room is not throttled; never more than its
+// capacity.
+SP_INLINE uint sp_admission_budget(uint quota, uint capacity, uint live) {
+  uint free_slots = capacity - min(live, capacity);
+  return min(capacity, max(quota, free_slots));
 }
 
 SP_END_NAMESPACE

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/build_features.h"
+#include "config/cues_json.h"
 #include "config/diffraction_json.h"
 #include "config/display_json.h"
 #include "config/json_fields.h"
@@ -154,6 +155,7 @@ constexpr KeyReader kKeyReaders[] = {
     {"sources", read_sources},
     {"display", [](const json& v, const JsonPath& at, Config& c) { read_display(v, at, c.display); }},
     {"diffraction", [](const json& v, const JsonPath& at, Config& c) { read_diffraction(v, at, c.diffraction); }},
+    {"cues", [](const json& v, const JsonPath& at, Config& c) { read_cues(v, at, c.cues); }},
 };
 
 Config read_config(const json& root, std::string_view origin) {

@@ -70,7 +70,7 @@ class CpuVisualizer final : public VisualizerBase {
         totals_.casts_cut_short += finished->counters.cut_short;
         totals_.indicators += finished->indicator_count();
         totals_.rays_emitted += running_rays_;
-        upload_step(cmd, *finished);
+        upload_step(cmd, *finished, static_cast<std::uint32_t>(running_step_));
         worker_.release();
         steps_run_ = running_step_ + 1;
         handed = 1;
@@ -130,8 +130,8 @@ class CpuVisualizer final : public VisualizerBase {
     StepPlan plan;
     detail::SoundSceneBackend::plan(scene_, next_step_, plan);
     running_rays_ = plan.total_rays;
-    worker_.start(bvh, layer_table_, std::move(plan), make_sim_params(scene_.world().config, next_step_),
-                  writer_.inverse_indicator_size(), embree_.get());
+    const shader::SimParams params = make_sim_params(scene_.world().config, next_step_, plan.listener);
+    worker_.start(bvh, layer_table_, std::move(plan), params, writer_.inverse_indicator_size(), embree_.get());
     running_step_ = next_step_;
     next_step_ += 1;
     due_ -= 1;
@@ -139,8 +139,8 @@ class CpuVisualizer final : public VisualizerBase {
 
   // The ring's one writer admits and places the step's indicators; only
   // the slots it writes are uploaded.
-  void upload_step(VkCommandBuffer cmd, const CpuStepOutput& step) {
-    writer_.write(step, [&](std::uint32_t slot, std::span<const shader::Indicator> run) {
+  void upload_step(VkCommandBuffer cmd, const CpuStepOutput& step, std::uint32_t step_number) {
+    writer_.write(step, step_number, [&](std::uint32_t slot, std::span<const shader::Indicator> run) {
       vk::record_update(cmd, ring_, VkDeviceSize{slot} * sizeof(shader::Indicator), run.data(), run.size_bytes());
     });
     upload_draw_args(cmd);

@@ -10,6 +10,7 @@
 #include "sim/world_geometry.h"
 #include "sp_admission.h"
 #include "sp_draw_types.h"
+#include "sp_guide.h"
 #include "prepare.comp.spv.h"
 #include "resolve.comp.spv.h"
 #include "sim/step_plan.h"
@@ -114,6 +115,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                         vk::MemoryUsage::DeviceLocal, "layer counters");
   admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE), kStorage | kTransfer,
                          vk::MemoryUsage::DeviceLocal, "ring admission histogram");
+  guide = vk::Buffer(context, bytes<std::uint32_t>(std::uint64_t{source_capacity} * SP_GUIDE_STRIDE),
+                     kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "source guides");
   control_readback =
       vk::Buffer(context, sizeof(shader::Control), kTransfer, vk::MemoryUsage::Readback, "control readback");
 
@@ -121,6 +124,8 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
   const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE, 0u);
+  const std::vector<std::uint32_t> empty_guides(
+      std::max<std::size_t>(1, std::size_t{source_capacity} * SP_GUIDE_STRIDE), 0u);
   StagingPlan staging;
   staging.add(nodes, world.geometry->bvh.nodes);
   staging.add(triangles, world.geometry->bvh.triangles);
@@ -129,11 +134,12 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   staging.add(control, initial);
   staging.add(counters, zeros);
   staging.add(admission, empty_admission);
+  staging.add(guide, empty_guides);
   staging.fill(context, *this);
 
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
-  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,   &triangles, &layers,  &step_input, &rays,      &hits, &queues,
-                                               &control, &ring,      &capture, &counters,   &admission, &edges};
+  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,   &triangles, &layers,  &step_input, &rays,      &hits,  &queues,
+                                               &control, &ring,      &capture, &counters,   &admission, &edges, &guide};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));

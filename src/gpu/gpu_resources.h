@@ -49,6 +49,7 @@ struct GpuResources {
   vk::Buffer ring, capture;             // indicators
   vk::Buffer counters;                  // per-layer counters
   vk::Buffer admission;                 // the step's admission histogram (sp_ring.h)
+  vk::Buffer guide;                     // each source id's guide (sp_guide.h)
   vk::Buffer control_readback;          // copy of control after each step
 
   // Initial contents, copied by the first recorded step: where each part

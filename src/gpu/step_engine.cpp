@@ -77,7 +77,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                            VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    record_step_dispatches(cmd, resources_, options.stages);
+    record_step_dispatches(cmd, resources_, static_cast<std::uint32_t>(plan_.sources.size()), options.stages);
   }
 
   // RAW: the ring and the draw arguments the last prepare wrote reach the
@@ -127,13 +127,15 @@ void StepEngine::record_step_input(VkCommandBuffer cmd, const World& world, std:
   if (plan_.sources.size() > resources_.source_capacity)
     throw std::logic_error("the step plays more sources than the step input holds");
   shader::StepInput input{};
-  input.params = make_sim_params(world.config, step);
+  input.params = make_sim_params(world.config, step, plan_.listener);
   input.total_rays = plan_.total_rays;
   input.source_count = static_cast<std::uint32_t>(plan_.sources.size());
   input.ring_capacity = resources_.ring_capacity;
   input.layer_count = resources_.layer_count;
   input.ring_quota = ring_quota(world.config);
   input.inv_indicator_size = inverse_indicator_size(world.config);
+  input.dt = static_cast<float>(world.config.dt);
+  input.lifetime = world.config.indicator_lifetime;
   const std::size_t source_bytes = plan_.sources.size() * sizeof(shader::StepSource);
   step_input_bytes_.resize(sizeof input + source_bytes);
   std::memcpy(step_input_bytes_.data(), &input, sizeof input);

@@ -18,7 +18,8 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
 
 }  // namespace
 
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, StageQueries* stages) {
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t source_count,
+                            StageQueries* stages) {
   if (stages != nullptr && stages->next + stage_queries_per_step(r.iterations) > stages->end) stages = nullptr;
   // After the kernels before it have finished (compute-shader stage).
   auto stamp = [&](StageKernel kind) {
@@ -71,10 +72,19 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, StageQue
     bind(cmd, r, r.kernels.admit, 0, phase);
     const bool over_capture =
         phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM || phase == SP_ADMIT_COPY;
-    if (over_capture) vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
-    else vkCmdDispatch(cmd, 1, 1, 1);
+    if (over_capture) {
+      vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
+    } else if (phase == SP_ADMIT_SELECT) {
+      // Its first thread plans; a thread per step source folds a guide.
+      vkCmdDispatch(cmd, std::max(1u, (source_count + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE), 1, 1);
+    } else {
+      vkCmdDispatch(cmd, 1, 1, 1);
+    }
   }
   stamp(StageKernel::Admit);
+  // The ring, the control block and the guides this step wrote reach the
+  // next step's kernels.
+  vk::compute_to_compute(cmd);
 }
 
 }  // namespace sp::gpu

@@ -13,7 +13,10 @@ namespace sp::gpu {
 
 // The caller has made the step input visible to compute reads and ordered
 // earlier accesses to the ray, queue and control buffers before this.
-// With `stages`, timestamps go around its kernels when the step fits.
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources, StageQueries* stages = nullptr);
+// `source_count`: entries of the step's source table (its guides are folded
+// after its spots are heard). With `stages`, timestamps go around its
+// kernels when the step fits.
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources, std::uint32_t source_count,
+                            StageQueries* stages = nullptr);
 
 }  // namespace sp::gpu

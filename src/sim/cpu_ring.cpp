@@ -7,10 +7,43 @@ namespace sp {
 RingWriter::RingWriter(const Config& config)
     : capacity_(config.max_indicators),
       quota_(ring_quota(config)),
-      inverse_indicator_size_(sp::inverse_indicator_size(config)) {}
+      inverse_indicator_size_(sp::inverse_indicator_size(config)),
+      dt_(static_cast<float>(config.dt)),
+      lifetime_(config.indicator_lifetime) {}
 
-void IndicatorRing::write(const CpuStepOutput& step) {
-  writer_.write(step, [this](std::uint32_t slot, std::span<const shader::Indicator> run) { store(slot, run); });
+void RingWriter::record_births(std::span<const shader::Indicator> laid) {
+  for (const shader::Indicator& ind : laid) {
+    if (!births_.empty() && births_.back().step == ind.step) {
+      births_.back().count += 1u;
+    } else {
+      births_.push_back(Births{ind.step, 1u});
+    }
+  }
+  // Drop what was overwritten: the ring holds the newest filled() slots.
+  std::uint64_t held = 0;
+  for (const Births& b : births_) held += b.count;
+  while (held > filled()) {
+    Births& oldest = births_.front();
+    const std::uint64_t drop = std::min<std::uint64_t>(oldest.count, held - filled());
+    oldest.count -= static_cast<std::uint32_t>(drop);
+    held -= drop;
+    if (oldest.count == 0u) births_.pop_front();
+  }
+}
+
+std::uint32_t RingWriter::live_slots(std::uint32_t now) const {
+  // Births only grow from the oldest slot to the newest, so the live ones
+  // are the newest runs.
+  std::uint32_t live = 0;
+  for (auto it = births_.rbegin(); it != births_.rend(); ++it) {
+    if (!shader::sp_indicator_live(now, it->step, dt_, lifetime_)) break;
+    live += it->count;
+  }
+  return live;
+}
+
+void IndicatorRing::write(const CpuStepOutput& step, std::uint32_t now) {
+  writer_.write(step, now, [this](std::uint32_t slot, std::span<const shader::Indicator> run) { store(slot, run); });
 }
 
 void IndicatorRing::place(std::span<const shader::Indicator> indicators) {

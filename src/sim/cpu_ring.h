@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <span>
 #include <vector>
 
@@ -18,21 +19,25 @@
 
 namespace sp {
 
-// Admits each step's indicators under the ring's quota (AdmissionPlan,
-// sp_admission.h) and lays them in the slots after the last step's, the
-// oldest overwritten. Where the slots live is the caller's: `store(slot,
-// run)` copies `run` (a std::span<const shader::Indicator>) into slots
-// [slot, slot + run.size()), which never wrap.
+// Admits each step's indicators under the ring's budget (AdmissionPlan,
+// sp_admission.h; sp_admission_budget: the quota, or all the free room) and
+// lays them in the slots after the last step's, the oldest overwritten.
+// Where the slots live is the caller's: `store(slot, run)` copies `run` (a
+// std::span<const shader::Indicator>) into slots [slot, slot + run.size()),
+// which never wrap. The writer keeps the ring's births as runs, oldest
+// first, so it knows how many slots are live without reading them back.
 class RingWriter {
  public:
   // A ring of config.max_indicators slots, with its quota and bins.
   explicit RingWriter(const Config& config);
 
-  // Admits `step`'s indicators and lays them. Admission comes first: when
-  // it fails (out of memory), the ring is as it was.
+  // Admits `step`'s indicators (those of step `now`) and lays them.
+  // Admission comes first: when it fails (out of memory), the ring is as
+  // it was.
   template <class Store>
-  void write(const CpuStepOutput& step, Store&& store) {
-    const std::vector<shader::Indicator> admitted = step.admitted(quota_, inverse_indicator_size_);
+  void write(const CpuStepOutput& step, std::uint32_t now, Store&& store) {
+    const std::uint32_t budget = shader::sp_admission_budget(quota_, capacity_, live_slots(now));
+    const std::vector<shader::Indicator> admitted = step.admitted(budget, inverse_indicator_size_);
     place(admitted, store);
   }
 
@@ -51,7 +56,12 @@ class RingWriter {
       done += run;
     }
     written_ += indicators.size();
+    record_births(indicators);
   }
+
+  // Slots whose indicator is live at step `now` (sp_indicator_live), the
+  // GPU's admission finds the same by searching its ring's births.
+  std::uint32_t live_slots(std::uint32_t now) const;
 
   std::uint32_t capacity() const { return capacity_; }
   // Indicators ever laid; the next goes to slot written() % capacity().
@@ -63,10 +73,19 @@ class RingWriter {
   float inverse_indicator_size() const { return inverse_indicator_size_; }
 
  private:
+  struct Births {
+    std::uint32_t step;
+    std::uint32_t count;
+  };
+  void record_births(std::span<const shader::Indicator> laid);
+
   std::uint32_t capacity_;
   std::uint32_t quota_;
   float inverse_indicator_size_;
+  float dt_;
+  float lifetime_;
   std::uint64_t written_ = 0;
+  std::deque<Births> births_;  // what the filled slots hold, oldest first
 };
 
 // The ring on the host, for the CPU simulator.
@@ -74,8 +93,9 @@ class IndicatorRing {
  public:
   explicit IndicatorRing(const Config& config) : writer_(config), slots_(writer_.capacity()) {}
 
-  // Admits and lays a step's indicators (RingWriter::write).
-  void write(const CpuStepOutput& step);
+  // Admits and lays a step's indicators, those of step `now`
+  // (RingWriter::write).
+  void write(const CpuStepOutput& step, std::uint32_t now);
   // Lays indicators already admitted (RingWriter::place).
   void place(std::span<const shader::Indicator> indicators);
 

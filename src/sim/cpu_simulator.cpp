@@ -74,9 +74,9 @@ class CpuSimulator final : public Simulator {
       const Bvh& bvh = scene_.world().geometry->bvh;
       if (embree_) embree_->update(changes);
       detail::SoundSceneBackend::plan(scene_, step, plan_);
-      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step),
+      runner_.run(bvh, layer_table_, plan_, make_sim_params(scene_.world().config, step, plan_.listener),
                   ring_.writer().inverse_indicator_size(), last_, embree_.get());
-      ring_.write(last_);
+      ring_.write(last_, static_cast<std::uint32_t>(step));
 
       for (std::size_t l = 0; l < totals_.layers.size(); ++l) accumulate(totals_.layers[l], last_.counters.layers[l]);
       totals_.steps += 1;

@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "sim/indicator_ring.h"
+#include "sp_guide.h"
 #include "sp_ray_model.h"
 
 namespace sp {
@@ -39,18 +40,32 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
   for (WorkerCounters& worker : worker_counters_) {
     worker.counters.casts = 0;
     worker.counters.cut_short = 0;
+    worker.counters.connections = 0;
     std::fill(worker.counters.layers.begin(), worker.counters.layers.end(), LayerCounters{});
+    worker.guide_pending.assign(plan.sources.size() * SP_GUIDE_CELLS, 0u);
   }
+  fold_guides(plan);
+  const std::uint32_t* guide = guides_.data();
 
   pool_.parallel_for(plan.total_rays, kChunkRays, [&](std::size_t first, std::size_t last, unsigned worker) {
     const std::size_t chunk = first / kChunkRays;
     DefaultInitVector<shader::Indicator>& indicators = out.chunks_[chunk].list;
+    WorkerCounters& mine = worker_counters_[worker];
     std::size_t slot = 0;  // rays are grouped by source in ascending ray index
     for (std::size_t i = first; i < last; ++i) {
       while (i >= plan.sources[slot].first_ray + plan.sources[slot].ray_count) ++slot;
-      shader::RayState ray = shader::sp_emit_ray(plan.sources[slot], static_cast<std::uint32_t>(slot),
-                                                 static_cast<std::uint32_t>(i), params.seed, params.step);
-      trace_ray(context, ray, indicators, worker_counters_[worker].counters);
+      const auto ray_index = static_cast<std::uint32_t>(i);
+      std::uint32_t cell = 0;
+      const glm::vec3 dir = shader::sp_source_emission(guide, plan.sources[slot], ray_index, params, cell);
+      const shader::RayState ray =
+          shader::sp_emit_ray(plan.sources[slot], static_cast<std::uint32_t>(slot), ray_index, dir, cell);
+      trace_ray(context, ray, indicators, mine.counters);
+    }
+    connect_indicators(context, indicators, mine.counters);
+    for (const shader::Indicator& ind : indicators) {
+      if (ind.heard <= 0.0f) continue;
+      mine.guide_pending[ind.source_slot * SP_GUIDE_CELLS + ind.emit_cell] +=
+          shader::sp_guide_spot_weight(shader::sp_heard_relative(ind, inverse_indicator_size), ind.toward);
     }
     out.count_bins(chunk, inverse_indicator_size, out.worker_bins_[worker].count);
   });
@@ -63,12 +78,30 @@ void CpuStepRunner::run(const Bvh& bvh, std::span<const shader::LayerAcoustics> 
 
   out.counters.casts = 0;
   out.counters.cut_short = 0;
+  out.counters.connections = 0;
   out.counters.layers.assign(layer_count_, LayerCounters{});
   for (const WorkerCounters& worker : worker_counters_) {
     out.counters.casts += worker.counters.casts;
     out.counters.cut_short += worker.counters.cut_short;
+    out.counters.connections += worker.counters.connections;
     for (std::size_t l = 0; l < layer_count_; ++l) accumulate(out.counters.layers[l], worker.counters.layers[l]);
+    // Integer sums: the pending weights do not depend on which worker
+    // traced what.
+    for (std::size_t slot = 0; slot < plan.sources.size(); ++slot) {
+      const std::uint32_t base = shader::sp_guide_base(plan.sources[slot].source_id) + SP_GUIDE_PENDING;
+      for (std::uint32_t c = 0; c < SP_GUIDE_CELLS; ++c)
+        guides_[base + c] += worker.guide_pending[slot * SP_GUIDE_CELLS + c];
+    }
   }
+}
+
+void CpuStepRunner::fold_guides(const StepPlan& plan) {
+  std::uint32_t sources = 0;
+  for (const shader::StepSource& source : plan.sources) sources = std::max(sources, source.source_id + 1u);
+  if (guides_.size() < std::size_t{sources} * SP_GUIDE_STRIDE)
+    guides_.resize(std::size_t{sources} * SP_GUIDE_STRIDE, 0u);
+  for (const shader::StepSource& source : plan.sources)
+    shader::sp_guide_fold(guides_.data(), shader::sp_guide_base(source.source_id));
 }
 
 std::size_t CpuStepOutput::indicator_count() const {

@@ -106,11 +106,21 @@ class CpuStepRunner {
  private:
   struct alignas(kCacheLine) WorkerCounters {
     TraceCounters counters;
+    // Per step-source slot and guide cell: what this worker's heard spots
+    // add to their sources' guides.
+    std::vector<std::uint32_t> guide_pending;
   };
+
+  // Grows the guides to the plan's source ids, and folds each planned
+  // source's pending weights into its guide (sp_guide_fold).
+  void fold_guides(const StepPlan& plan);
 
   ThreadPool pool_;
   std::size_t layer_count_;
   std::vector<WorkerCounters> worker_counters_;
+  // Every source's guide (sp_guide.h), by source id: what the rays of its
+  // earlier steps found the player hears.
+  std::vector<std::uint32_t> guides_;
 };
 
 }  // namespace sp

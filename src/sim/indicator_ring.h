@@ -88,7 +88,7 @@ class AdmissionPlan {
   // After plan_bins(): whether indicators of admission bin `bin` may be
   // admitted, at or above their class's overflowing bin; those below never are.
   bool may_admit(std::uint32_t bin) const {
-    return bin + 1u >= buffer_[SP_ADMISSION_PLAN_THRESHOLD + bin / SP_ADMISSION_LEVELS];
+    return bin + 1u >= buffer_[SP_ADMISSION_PLAN_THRESHOLD + shader::sp_bin_class(bin)];
   }
   // After plan_bins(): whether indicators of admission bin `bin` need their
   // tie-break bin counted, and decided by it.

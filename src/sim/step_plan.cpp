@@ -51,6 +51,7 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
   const Config& config = world.config;
   const double t = static_cast<double>(step) * config.dt;
   StepPlan plan;
+  plan.listener = listener;
   std::vector<double> weights;
   for (std::uint32_t id = 0; id < world.sources.size(); ++id) {
     const SourceDesc& source = world.sources[id];
@@ -81,7 +82,7 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
   return plan;
 }
 
-shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
+shader::SimParams make_sim_params(const Config& config, std::uint64_t step, glm::vec3 listener) {
   shader::SimParams p{};
   p.min_energy = config.min_energy;
   p.air_attenuation = config.air_attenuation;
@@ -102,6 +103,11 @@ shader::SimParams make_sim_params(const Config& config, std::uint64_t step) {
     p.diffraction_width = static_cast<float>(double(kSpeedOfSound) / (4.0 * std::numbers::pi * double(d.frequency)));
     p.diffraction_gain = d.gain;
   }
+  const CueSettings& cues = config.cues;
+  p.cues = (cues.listen ? SP_CUES_LISTEN : 0u) | (cues.listen && cues.guide_share > 0.0f ? SP_CUES_GUIDE : 0u);
+  p.toward_cos = static_cast<float>(std::cos(double(cues.toward_angle) * std::numbers::pi / 180.0));
+  p.guide_share = cues.guide_share;
+  p.listener = listener;
   return p;
 }
 

@@ -16,6 +16,7 @@ namespace sp {
 struct StepPlan {
   std::vector<shader::StepSource> sources;  // active sources, ascending id
   std::uint32_t total_rays = 0;             // sum of ray_count
+  glm::vec3 listener{0.0f};                 // where the step's sound is heard
 };
 
 // Is the source playing at time t by its emission pattern?
@@ -31,8 +32,8 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
 // remainder one each to the lowest indices. All weights zero: even split.
 std::vector<std::uint32_t> split_budget(std::uint32_t budget, const std::vector<double>& weights);
 
-// The ray model's parameters for one step.
-shader::SimParams make_sim_params(const Config& config, std::uint64_t step);
+// The ray model's parameters for one step, heard at `listener`.
+shader::SimParams make_sim_params(const Config& config, std::uint64_t step, glm::vec3 listener);
 
 // cos of diffraction.edge_angle: an edge whose faces turn by at least the
 // angle has turn_cos <= this. One computation for the backends and `info`.

@@ -38,8 +38,8 @@ struct SingleRay {
 
   // Traces one ray from `origin` along `dir` (normalised here).
   std::vector<shader::Indicator> trace(glm::vec3 origin, glm::vec3 dir, TraceCounters& counters) {
-    TraceContext context{&world.geometry->bvh, layers, sources, make_sim_params(config, 0)};
-    shader::RayState ray = shader::sp_emit_ray(sources[0], 0, 0, config.seed, 0);
+    TraceContext context{&world.geometry->bvh, layers, sources, make_sim_params(config, 0, world.listener)};
+    shader::RayState ray = shader::sp_emit_ray(sources[0], 0, 0, glm::normalize(dir), 0u);
     ray.origin = origin;
     ray.dir = glm::normalize(dir);
     counters.layers.assign(world.layer_names.size(), {});
