@@ -1,7 +1,8 @@
 #version 460
 // Off-screen arrows, vertex stage: one instance per source. A source that is
 // heard (it has live spots, counted by the prepass) but lies outside the
-// view gets an arrow at the screen's edge, pointing the way to turn, in its
+// view, or inside it but hidden from the listener (SP_SOURCE_CUE_OCCLUDED),
+// gets an arrow at the screen's edge, pointing the way to turn, in its
 // colour and with its category's shape (docs/accessibility.md).
 #extension GL_GOOGLE_include_directive : require
 #include "indicator_bindings.glsl"
@@ -32,7 +33,9 @@ void main() {
                source_live[id] > 0u;
   vec4 clip = push.view_proj * vec4(source.position, 1.0);
   bool in_view = clip.w > 0.0 && all(lessThanEqual(abs(clip.xy), vec2(clip.w)));
-  if (!shown || in_view) {
+  // In view and not hidden, its spots are its cue.
+  bool cued = !in_view || (source_cues[id] & SP_SOURCE_CUE_OCCLUDED) != 0u;
+  if (!shown || !cued) {
     collapse();
     return;
   }

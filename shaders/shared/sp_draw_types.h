@@ -75,7 +75,8 @@ SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && off
 #define SP_DRAW_BINDING_CATEGORIES 3   // per category: cap histogram and decision (the prepass)
 #define SP_DRAW_BINDING_VISIBLE 4      // per ring slot: 1 when drawn under the caps (the prepass)
 #define SP_DRAW_BINDING_DRAW_ARGS 5    // the ring's VkDrawIndirectCommand (instance count = filled slots)
-#define SP_DRAW_BINDING_COUNT 6
+#define SP_DRAW_BINDING_SOURCE_CUES 6  // per source id: SP_SOURCE_CUE_* bits for this step
+#define SP_DRAW_BINDING_COUNT 7
 
 // The halo's two rings, linear RGB: dark against the spot, light outside
 // it. Against any surface one of them keeps at least sqrt(21) = 4.6:1
@@ -86,6 +87,14 @@ SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && off
 // DisplaySource.shape_flags: the shape (SP_SHAPE_*) in the low byte, then:
 #define SP_SOURCE_HIDDEN 0x100u   // its category is in hide_categories
 #define SP_SOURCE_PRESENT 0x200u  // a source with this id exists
+
+// Per source id in the source cues buffer (SP_DRAW_BINDING_SOURCE_CUES),
+// what the simulation found this step:
+//   bit 0  SP_SOURCE_CUE_OCCLUDED  the direct path from the source to the
+//          listener is blocked: a source heard but hidden gets its arrow
+//          even when its direction is on screen.
+//   bits 1..31 unused, 0.
+#define SP_SOURCE_CUE_OCCLUDED 1u
 
 // Per category in the categories buffer: a histogram of live spots by
 // energy relative to their source (SP_CAP_BINS bins), then the lowest bin

@@ -68,10 +68,14 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
                "display sources"),
       source_live_(context, sizeof(std::uint32_t) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
                    "display source live counts"),
+      source_cues_(context, sizeof(std::uint32_t) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
+                   "display source cues"),
+      cues_(source_capacity_, 0u),
       categories_(context, sizeof(std::uint32_t) * SP_CATEGORY_STRIDE * category_capacity_, kTable,
                   vk::MemoryUsage::DeviceLocal, "display category caps") {
   bindings_.bind(context, SP_DRAW_BINDING_SOURCES, sources_);
   bindings_.bind(context, SP_DRAW_BINDING_SOURCE_LIVE, source_live_);
+  bindings_.bind(context, SP_DRAW_BINDING_SOURCE_CUES, source_cues_);
   bindings_.bind(context, SP_DRAW_BINDING_CATEGORIES, categories_);
   ensure_visible_capacity(1);
 
@@ -130,7 +134,11 @@ void IndicatorPass::record_prepare(VkCommandBuffer cmd, std::span<const shader::
                      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   if (!sources.empty()) vk::record_update(cmd, sources_, 0, sources.data(), sources.size_bytes());
-  // RAW: the table reaches the prepass and the draw.
+  if (cues_changed_) {
+    vk::record_update(cmd, source_cues_, 0, cues_.data(), cues_.size() * sizeof(std::uint32_t));
+    cues_changed_ = false;
+  }
+  // RAW: the tables reach the prepass and the draw.
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | draw_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 
@@ -192,6 +200,15 @@ void IndicatorPass::record(VkCommandBuffer cmd, const DrawView& view, const Disp
   vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push,
                      &push);
   vkCmdDrawIndirect(cmd, bound_draw_args_, bound_draw_args_offset_, 1, sizeof(VkDrawIndirectCommand));
+}
+
+void IndicatorPass::set_source_cues(std::span<const std::uint32_t> cues) {
+  if (cues.size() > source_capacity_)
+    throw Exception(ErrorCode::LimitExceeded, "indicator pass: cues for " + std::to_string(cues.size()) +
+                                                  " sources, more than the " + std::to_string(source_capacity_) +
+                                                  " it was made for");
+  std::fill(std::copy(cues.begin(), cues.end(), cues_.begin()), cues_.end(), 0u);
+  cues_changed_ = true;
 }
 
 void IndicatorPass::record_arrows(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame) const {
