@@ -157,16 +157,18 @@ struct DisplayPrepassPush {
 };
 SP_CHECK_LAYOUT(sizeof(DisplayPrepassPush) == 32);
 
-// Push constants of the off-screen arrows, 96 bytes.
+// Push constants of the off-screen arrows, 112 bytes.
 struct ArrowPush {
-  mat4 view_proj;
+  mat4 view_proj;      // world -> Vulkan clip space
   vec2 viewport;       // pixels
-  float arrow_pixels;  // an arrow's length, pixels
+  float arrow_pixels;  // the arrow's shape's diameter, pixels: 2 units of its frame (sp_arrows.h)
   uint source_count;   // entries of the source table in use
-  vec3 eye;
+  vec3 eye;            // camera position, world space
   uint pad0;
+  vec2 heading;  // the view's heading, world (x, z), unit (DrawView::heading)
+  vec2 pad1;
 };
-SP_CHECK_LAYOUT(sizeof(ArrowPush) == 96 && offsetof(ArrowPush, viewport) == 64 && offsetof(ArrowPush, eye) == 80);
+SP_CHECK_LAYOUT(sizeof(ArrowPush) == 112 && offsetof(ArrowPush, viewport) == 64 && offsetof(ArrowPush, arrow_pixels) == 72 && offsetof(ArrowPush, source_count) == 76 && offsetof(ArrowPush, eye) == 80 && offsetof(ArrowPush, heading) == 96);
 // Vulkan guarantees 128 bytes of push constants on every device.
 SP_CHECK_LAYOUT(sizeof(ScenePush) <= 128 && sizeof(IndicatorPush) <= 128 && sizeof(ArrowPush) <= 128);
 

@@ -22,9 +22,19 @@ namespace {
 constexpr VkBufferUsageFlags kTable = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 // Scene depth views a pass can sample: a swapchain's depth images, or one.
 constexpr std::uint32_t kSceneDepthCapacity = 8;
-// An off-screen arrow's length on screen: large enough for its shape to
-// stay above the shapes' minimum size (SP_SHAPE_MIN_PIXELS).
+// An off-screen arrow's shape's diameter on screen (its head, marks and
+// halo make it 2.6 times as long): well above the shapes' minimum size
+// (SP_SHAPE_MIN_PIXELS), to be read at a glance at the edge of sight.
 constexpr float kArrowPixels = 44.0f;
+// In a smaller viewport (under 587 px on its shorter side) the arrow
+// shrinks to this share of that side, down to SP_SHAPE_MIN_PIXELS: then the
+// ring holds two places at the top and bottom, for arrows in nearly the
+// same direction to stack (sp_arrows.h), from 360 px up.
+constexpr float kArrowViewportShare = 0.075f;
+
+float arrow_pixels(glm::vec2 viewport) {
+  return std::clamp(kArrowViewportShare * std::min(viewport.x, viewport.y), SP_SHAPE_MIN_PIXELS, kArrowPixels);
+}
 constexpr std::uint32_t kPrepassGroup = 64;
 
 std::uint32_t groups(std::uint32_t threads) { return (threads + kPrepassGroup - 1) / kPrepassGroup; }
@@ -91,7 +101,7 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
   arrows.vertex_spirv = sp_spirv_arrow_vert;
   arrows.fragment_spirv = sp_spirv_arrow_frag;
   arrows.push_constant_bytes = sizeof(shader::ArrowPush);
-  arrows.depth_test = false;  // an overlay at the screen's edge
+  arrows.depth_test = false;  // an overlay on the picture, never behind the scene
   arrows.name = "off-screen arrows";
   arrows_ = GraphicsPipeline(context, arrows);
 
@@ -216,9 +226,10 @@ void IndicatorPass::record_arrows(VkCommandBuffer cmd, const DrawView& view, con
   shader::ArrowPush push{};
   push.view_proj = view.view_projection;
   push.viewport = view.viewport;
-  push.arrow_pixels = kArrowPixels;
+  push.arrow_pixels = arrow_pixels(view.viewport);
   push.source_count = std::min(frame.source_count, source_capacity_);
   push.eye = view.eye;
+  push.heading = view.heading;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.get());
   const VkDescriptorSet set = bindings_.set();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.layout(), 0, 1, &set, 0, nullptr);

@@ -1,9 +1,10 @@
 // The indicator pass: every ring slot drawn as its category's shape on its
 // surface, elongated along its sound's direction, with a halo, clipped to
-// its surface when the scene's depth is given; off-screen arrows for the
-// sources heard but out of view. Drawn with vkCmdDrawIndirect from the
-// VkDrawIndirectCommand the simulation wrote: no vertex buffers, no
-// read-back. docs/accessibility.md says what each part is for.
+// its surface when the scene's depth is given; arrows at their bearing for
+// the sources heard but out of view or occluded. Drawn with
+// vkCmdDrawIndirect from the VkDrawIndirectCommand the simulation wrote: no
+// vertex buffers, no read-back. docs/accessibility.md says what each part
+// is for.
 //
 // Per frame, outside any rendering: record_prepare() (the source table,
 // the source cues, and the prepass that counts live spots per source and
@@ -51,9 +52,9 @@ class IndicatorPass {
   // scene_depths()) clips them to their surfaces; VK_NULL_HANDLE does not.
   void record(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame,
               VkDescriptorSet scene_depth = VK_NULL_HANDLE) const;
-  // Inside an active rendering: an arrow at the screen's edge for each
-  // source heard but out of view, or in view but occluded
-  // (set_source_cues).
+  // Inside an active rendering: an arrow on a ring inset from the screen's
+  // edge, at its bearing, for each source heard but out of view, or in view
+  // but occluded (set_source_cues).
   void record_arrows(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame) const;
 
   // What the simulation found per source id (SP_SOURCE_CUE_* bits,
