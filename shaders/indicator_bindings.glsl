@@ -14,6 +14,7 @@ layout(std430, set = 0, binding = SP_DRAW_BINDING_DRAW_ARGS) readonly buffer Dra
   uint draw_vertex_count;
   uint draw_instance_count;  // ring slots in use
 };
+layout(std430, set = 0, binding = SP_DRAW_BINDING_SOURCE_CUES) readonly buffer SourceCuesBuffer { uint source_cues[]; };
 #ifdef SP_CLIP
 // Set 1 holds only the scene's depth, so that the unclipped pipeline needs none.
 layout(set = 1, binding = 0) uniform sampler2D scene_depth;

@@ -84,9 +84,11 @@ struct DisplaySettings {
   float min_opacity = 0.0f;                       // in [0, 1]: live spots are never fainter
   std::vector<std::string> hide_categories;       // not drawn (e.g. the player's own footsteps)
   std::optional<std::uint32_t> max_per_category;  // at most this many drawn per category, most energetic first
-  // An arrow at the screen's edge for each source heard but out of view.
-  // Empty: the front end decides (render and the viewer: on; the embedded
-  // Visualizer: off unless asked).
+  // An arrow on a ring near the screen's edge, at its bearing, for each
+  // source heard but out of view, or in view but occluded
+  // (docs/accessibility.md). false hides them all. Empty: the front end
+  // decides (render and the viewer: on; the embedded Visualizer: off unless
+  // asked).
   std::optional<bool> offscreen_arrows;
 };
 

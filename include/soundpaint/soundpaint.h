@@ -464,10 +464,11 @@ typedef struct sp_display_settings {
    * energetic first; 0 (the default): no cap. (To draw none of a category,
    * hide it.) */
   uint32_t max_per_category;
-  /* An arrow at the screen's edge, in the source's colour, for each source
-   * heard (it has live indicators) but out of view: 1 on, 0 off, -1 (the
-   * default) the front end decides, which for the visualizer is off. Needs
-   * the viewport's size (sp_draw_options). */
+  /* An arrow on a ring near the screen's edge, at the source's bearing, in
+   * its colour, for each source heard (it has live indicators) but out of
+   * view, or in view but occluded (docs/accessibility.md): 1 on, 0 off (none
+   * at all), -1 (the default) the front end decides, which for the
+   * visualizer is off. Needs the viewport's size (sp_draw_options). */
   int offscreen_arrows;
   /* Categories not drawn (the player's own footsteps, say): hide_category_count
    * non-NULL, non-empty UTF-8 names. hide_categories may be NULL only when

@@ -75,7 +75,8 @@ SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && off
 #define SP_DRAW_BINDING_CATEGORIES 3   // per category: cap histogram and decision (the prepass)
 #define SP_DRAW_BINDING_VISIBLE 4      // per ring slot: 1 when drawn under the caps (the prepass)
 #define SP_DRAW_BINDING_DRAW_ARGS 5    // the ring's VkDrawIndirectCommand (instance count = filled slots)
-#define SP_DRAW_BINDING_COUNT 6
+#define SP_DRAW_BINDING_SOURCE_CUES 6  // per source id: SP_SOURCE_CUE_* bits for this step
+#define SP_DRAW_BINDING_COUNT 7
 
 // The halo's two rings, linear RGB: dark against the spot, light outside
 // it. Against any surface one of them keeps at least sqrt(21) = 4.6:1
@@ -86,6 +87,14 @@ SP_CHECK_LAYOUT(sizeof(ScenePush) == 96 && offsetof(ScenePush, eye) == 64 && off
 // DisplaySource.shape_flags: the shape (SP_SHAPE_*) in the low byte, then:
 #define SP_SOURCE_HIDDEN 0x100u   // its category is in hide_categories
 #define SP_SOURCE_PRESENT 0x200u  // a source with this id exists
+
+// Per source id in the source cues buffer (SP_DRAW_BINDING_SOURCE_CUES),
+// what the simulation found this step:
+//   bit 0  SP_SOURCE_CUE_OCCLUDED  the direct path from the source to the
+//          listener is blocked: a source heard but hidden gets its arrow
+//          even when its direction is on screen.
+//   bits 1..31 unused, 0.
+#define SP_SOURCE_CUE_OCCLUDED 1u
 
 // Per category in the categories buffer: a histogram of live spots by
 // energy relative to their source (SP_CAP_BINS bins), then the lowest bin
@@ -148,16 +157,18 @@ struct DisplayPrepassPush {
 };
 SP_CHECK_LAYOUT(sizeof(DisplayPrepassPush) == 32);
 
-// Push constants of the off-screen arrows, 96 bytes.
+// Push constants of the off-screen arrows, 112 bytes.
 struct ArrowPush {
-  mat4 view_proj;
+  mat4 view_proj;      // world -> Vulkan clip space
   vec2 viewport;       // pixels
-  float arrow_pixels;  // an arrow's length, pixels
+  float arrow_pixels;  // the arrow's shape's diameter, pixels: 2 units of its frame (sp_arrows.h)
   uint source_count;   // entries of the source table in use
-  vec3 eye;
+  vec3 eye;            // camera position, world space
   uint pad0;
+  vec2 heading;  // the view's heading, world (x, z), unit (DrawView::heading)
+  vec2 pad1;
 };
-SP_CHECK_LAYOUT(sizeof(ArrowPush) == 96 && offsetof(ArrowPush, viewport) == 64 && offsetof(ArrowPush, eye) == 80);
+SP_CHECK_LAYOUT(sizeof(ArrowPush) == 112 && offsetof(ArrowPush, viewport) == 64 && offsetof(ArrowPush, arrow_pixels) == 72 && offsetof(ArrowPush, source_count) == 76 && offsetof(ArrowPush, eye) == 80 && offsetof(ArrowPush, heading) == 96);
 // Vulkan guarantees 128 bytes of push constants on every device.
 SP_CHECK_LAYOUT(sizeof(ScenePush) <= 128 && sizeof(IndicatorPush) <= 128 && sizeof(ArrowPush) <= 128);
 

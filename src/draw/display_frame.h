@@ -25,11 +25,24 @@ struct DrawView {
   float pixel_scale = 0.0f;         // pixels per metre 1 m ahead: |projection[1][1]| * height / 2; 0: unknown
   float depth_a = 0.0f;             // projection[2][2]; view distance = depth_b / (depth + depth_a)
   float depth_b = 0.0f;             // projection[3][2]
+  glm::vec2 heading{0.0f, -1.0f};   // the view's heading, world (x, z), unit: view_heading()
 
   // From the host's matrices (Vulkan clip space, a perspective projection)
   // and the viewport's size in pixels.
   static DrawView from(const glm::mat4& view, const glm::mat4& projection, glm::vec2 viewport);
 };
+
+// The way a camera faces in the horizontal plane (world up is +Y), as a
+// unit vector of world (x, z): off-screen arrows tell bearings from it
+// (sp_arrows.h). `forward` and `up` are the camera's unit view direction
+// and up vector. It is forward projected on the horizontal plane; for a
+// camera looking straight down, the up vector's projection (the way the
+// picture's top faces), and straight up, its opposite (the way the
+// picture's bottom faces: where a player tilting their head back was
+// facing). Either way it is the limit of forward's projection as the
+// camera tips through straight down or up, so arrows do not flip there.
+// World -Z for a camera with neither.
+glm::vec2 view_heading(glm::vec3 forward, glm::vec3 up);
 
 struct DisplayFrame {
   std::uint32_t current_step = 0;    // the last step run: ages count from it (shown_step())

@@ -22,9 +22,19 @@ namespace {
 constexpr VkBufferUsageFlags kTable = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 // Scene depth views a pass can sample: a swapchain's depth images, or one.
 constexpr std::uint32_t kSceneDepthCapacity = 8;
-// An off-screen arrow's length on screen: large enough for its shape to
-// stay above the shapes' minimum size (SP_SHAPE_MIN_PIXELS).
+// An off-screen arrow's shape's diameter on screen (its head, marks and
+// halo make it 2.6 times as long): well above the shapes' minimum size
+// (SP_SHAPE_MIN_PIXELS), to be read at a glance at the edge of sight.
 constexpr float kArrowPixels = 44.0f;
+// In a smaller viewport (under 587 px on its shorter side) the arrow
+// shrinks to this share of that side, down to SP_SHAPE_MIN_PIXELS: then the
+// ring holds two places at the top and bottom, for arrows in nearly the
+// same direction to stack (sp_arrows.h), from 360 px up.
+constexpr float kArrowViewportShare = 0.075f;
+
+float arrow_pixels(glm::vec2 viewport) {
+  return std::clamp(kArrowViewportShare * std::min(viewport.x, viewport.y), SP_SHAPE_MIN_PIXELS, kArrowPixels);
+}
 constexpr std::uint32_t kPrepassGroup = 64;
 
 std::uint32_t groups(std::uint32_t threads) { return (threads + kPrepassGroup - 1) / kPrepassGroup; }
@@ -68,10 +78,14 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
                "display sources"),
       source_live_(context, sizeof(std::uint32_t) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
                    "display source live counts"),
+      source_cues_(context, sizeof(std::uint32_t) * source_capacity_, kTable, vk::MemoryUsage::DeviceLocal,
+                   "display source cues"),
+      cues_(source_capacity_, 0u),
       categories_(context, sizeof(std::uint32_t) * SP_CATEGORY_STRIDE * category_capacity_, kTable,
                   vk::MemoryUsage::DeviceLocal, "display category caps") {
   bindings_.bind(context, SP_DRAW_BINDING_SOURCES, sources_);
   bindings_.bind(context, SP_DRAW_BINDING_SOURCE_LIVE, source_live_);
+  bindings_.bind(context, SP_DRAW_BINDING_SOURCE_CUES, source_cues_);
   bindings_.bind(context, SP_DRAW_BINDING_CATEGORIES, categories_);
   ensure_visible_capacity(1);
 
@@ -87,7 +101,7 @@ IndicatorPass::IndicatorPass(const vk::Context& context, const DrawTarget& targe
   arrows.vertex_spirv = sp_spirv_arrow_vert;
   arrows.fragment_spirv = sp_spirv_arrow_frag;
   arrows.push_constant_bytes = sizeof(shader::ArrowPush);
-  arrows.depth_test = false;  // an overlay at the screen's edge
+  arrows.depth_test = false;  // an overlay on the picture, never behind the scene
   arrows.name = "off-screen arrows";
   arrows_ = GraphicsPipeline(context, arrows);
 
@@ -130,7 +144,11 @@ void IndicatorPass::record_prepare(VkCommandBuffer cmd, std::span<const shader::
                      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   if (!sources.empty()) vk::record_update(cmd, sources_, 0, sources.data(), sources.size_bytes());
-  // RAW: the table reaches the prepass and the draw.
+  if (cues_changed_) {
+    vk::record_update(cmd, source_cues_, 0, cues_.data(), cues_.size() * sizeof(std::uint32_t));
+    cues_changed_ = false;
+  }
+  // RAW: the tables reach the prepass and the draw.
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | draw_stages, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 
@@ -194,14 +212,24 @@ void IndicatorPass::record(VkCommandBuffer cmd, const DrawView& view, const Disp
   vkCmdDrawIndirect(cmd, bound_draw_args_, bound_draw_args_offset_, 1, sizeof(VkDrawIndirectCommand));
 }
 
+void IndicatorPass::set_source_cues(std::span<const std::uint32_t> cues) {
+  if (cues.size() > source_capacity_)
+    throw Exception(ErrorCode::LimitExceeded, "indicator pass: cues for " + std::to_string(cues.size()) +
+                                                  " sources, more than the " + std::to_string(source_capacity_) +
+                                                  " it was made for");
+  std::fill(std::copy(cues.begin(), cues.end(), cues_.begin()), cues_.end(), 0u);
+  cues_changed_ = true;
+}
+
 void IndicatorPass::record_arrows(VkCommandBuffer cmd, const DrawView& view, const DisplayFrame& frame) const {
   if (!frame.offscreen_arrows || frame.source_count == 0) return;
   shader::ArrowPush push{};
   push.view_proj = view.view_projection;
   push.viewport = view.viewport;
-  push.arrow_pixels = kArrowPixels;
+  push.arrow_pixels = arrow_pixels(view.viewport);
   push.source_count = std::min(frame.source_count, source_capacity_);
   push.eye = view.eye;
+  push.heading = view.heading;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.get());
   const VkDescriptorSet set = bindings_.set();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, arrows_.layout(), 0, 1, &set, 0, nullptr);

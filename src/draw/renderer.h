@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -59,6 +60,12 @@ class Renderer {
   // work submitted earlier are made visible by the frame's first barrier.
   RgbaImage render(const ViewCamera& camera, const gpu::IndicatorView& indicators, const World& world,
                    std::uint64_t steps_run);
+
+  // Per source id, SP_SOURCE_CUE_* bits for the next frames (sp_draw_types.h):
+  // a source heard and occluded gets its arrow even when it is in view.
+  // All 0 until set; the simulation is to provide them. Throws
+  // sp::Exception(LimitExceeded) past the renderer's source capacity.
+  void set_source_cues(std::span<const std::uint32_t> cues) { indicators_.set_source_cues(cues); }
 
   // Timings of the last frame; empty when the queue has no timestamps.
   std::optional<FrameTimings> last_timings() const { return last_timings_; }

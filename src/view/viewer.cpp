@@ -83,7 +83,7 @@ struct Session {
 
 // What the viewer adds to a config, at start and on every reload alike.
 void apply_viewer_defaults(Config& config, const Scene& scene) {
-  // Like render: arrows at the screen's edge unless the config says no.
+  // Like render: off-screen arrows unless the config says no.
   if (!config.display.offscreen_arrows) config.display.offscreen_arrows = true;
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
 }
