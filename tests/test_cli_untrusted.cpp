@@ -234,6 +234,18 @@ TEST(CliUntrusted, CheckAdvisesABudgetForAConfigOverItAndTheAdviceWorks) {
   expect_clean_failure("check " + kRoom + " --memory-budget 4Q", "option --memory-budget", 2);
 }
 
+// The load's refusal names --memory-budget; info takes it as every command
+// that loads a scene does, and the advice works there too.
+TEST(CliUntrusted, InfoTakesTheMemoryBudgetItsRefusalNames) {
+  ScratchDir dir("cli-info-budget");
+  const auto tight = run_command(kCli + " info " + kRoom + " --memory-budget 1K", dir.path());
+  EXPECT_EQ(tight.status, 1) << tight.out;
+  EXPECT_NE(tight.err.find("--memory-budget"), std::string::npos) << tight.err;
+  const auto raised = run_command(kCli + " info " + kRoom + " --memory-budget 64M", dir.path());
+  EXPECT_EQ(raised.status, 0) << raised.err;
+  expect_clean_failure("info " + kRoom + " --memory-budget 4Q", "option --memory-budget", 2);
+}
+
 TEST(CliUntrusted, CheckCountsALevelBeyondFloatRangeSanely) {
   ScratchDir dir("cli-check-huge");
   // One triangle from -3e38 to 3e38: 6e38 across, more than a float holds.

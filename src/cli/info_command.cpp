@@ -21,6 +21,7 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: soundpaint info SCENE [--config FILE] [--max-triangles N] [--allow-external-uris]\n"
+    "                             [--memory-budget SIZE]\n"
     "\n"
     "Prints the scene's triangles, layers (with triangle counts and the acoustic\n"
     "properties they resolve to), sources, listener, and BVH node count, depth and\n"
@@ -33,11 +34,15 @@ void print_vec(glm::vec3 v) { std::printf("(%.3f, %.3f, %.3f)", double(v.x), dou
 }  // namespace
 
 int run_info(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, with_options({"--config"}, kSceneLimitValueOptions),
-                                 with_options({"--help"}, kSceneLimitFlagOptions));
+  // --memory-budget: a level whose load would pass it is refused, naming
+  // the option; so info takes it too.
+  ParsedArgs parsed =
+      parse_args(args, with_options(with_options({"--config"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
+                 with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(scene_limit_help().c_str(), stdout);
+    std::fputs(memory_limit_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
