@@ -7,7 +7,10 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/bvh.h"
 #include "display/categories.h"
+#include "sim/world_geometry.h"
+#include "sp_draw_types.h"
 #include "soundpaint/result.h"
 #include "sp_types.h"
 
@@ -45,6 +48,25 @@ std::vector<shader::DisplaySource> make_display_sources(const World& world, cons
     if (id < world.source_active.size() && world.source_active[id]) entry.shape_flags |= SP_SOURCE_PRESENT;
   }
   return table;
+}
+
+std::vector<std::uint32_t> make_source_cues(const World& world) {
+  std::vector<std::uint32_t> cues(world.sources.size(), 0u);
+  const Bvh& bvh = world.geometry->bvh;
+  if (bvh.nodes.empty()) return cues;
+  const glm::vec3 listener = to_glm(world.listener);
+  for (std::size_t id = 0; id < world.sources.size(); ++id) {
+    if (id >= world.source_active.size() || !world.source_active[id]) continue;
+    const glm::vec3 to = to_glm(world.sources[id].position) - listener;
+    const float distance = glm::length(to);
+    // A source standing on a surface is not hidden by it: the cast stops a
+    // centimetre short.
+    const float reach = distance - 0.01f;
+    if (!(reach > 0.0f)) continue;
+    const HitInfo hit = closest_hit(bvh, listener, to / distance, 0.0f, reach);
+    if (hit.triangle != SP_INVALID || hit.cut_short != 0u) cues[id] |= SP_SOURCE_CUE_OCCLUDED;
+  }
+  return cues;
 }
 
 }  // namespace sp::draw

@@ -31,6 +31,8 @@ Renderer::Renderer(vk::Context& context, const World& world, const RenderSetting
 
 RgbaImage Renderer::render(const ViewCamera& camera, Simulator& simulator) {
   const World& world = simulator.world();
+  // Which sources the listener cannot see, for their arrows in view.
+  indicators_.set_source_cues(make_source_cues(world));
   if (auto view = gpu::indicator_view(simulator); view && view->context == &context_)
     return render(camera, *view, world, simulator.steps_run());
   // Another backend (or another device): the indicators come through the host.

@@ -52,7 +52,9 @@ class Renderer {
   // it says otherwise), clipped to their surfaces. A GPU simulator on this
   // renderer's context is drawn straight from its ring and indirect
   // arguments (nothing read back); any other backend through
-  // live_indicators(), uploaded into a host-visible ring.
+  // live_indicators(), uploaded into a host-visible ring. Sources whose
+  // straight way to the listener is blocked get their arrows in view too
+  // (make_source_cues).
   RgbaImage render(const ViewCamera& camera, Simulator& simulator);
 
   // The scene and the ring of `indicators` (on this renderer's context) of
@@ -63,7 +65,8 @@ class Renderer {
 
   // Per source id, SP_SOURCE_CUE_* bits for the next frames (sp_draw_types.h):
   // a source heard and occluded gets its arrow even when it is in view.
-  // All 0 until set; the simulation is to provide them. Throws
+  // All 0 until set; render(camera, simulator) sets them from its world's
+  // geometry (make_source_cues). Throws
   // sp::Exception(LimitExceeded) past the renderer's source capacity.
   void set_source_cues(std::span<const std::uint32_t> cues) { indicators_.set_source_cues(cues); }
 

@@ -114,6 +114,7 @@ void VisualizerBase::record_display(VkCommandBuffer cmd) {
   }
   const World& world = scene_.world();
   const std::vector<shader::DisplaySource> sources = draw::make_display_sources(world, world.config.display);
+  pass_.set_source_cues(draw::make_source_cues(world));
   const draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
   pass_.record_prepare(cmd, sources, frame, simulation_on_graphics_queue_);
 }
