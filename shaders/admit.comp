@@ -1,26 +1,58 @@
 #version 460
 // After a step: admits the ring's share of the step's indicators (sp_ring.h)
-// in six dispatches, chosen by push.finish (SP_ADMIT_*):
-// - histogram: each indicator's way to the listener is cast and what it
-//   hears completed (sp_connect.h), what it is worth added to its source's
-//   guide (sp_guide.h), and its admission bin counted;
+// in seven dispatches, chosen by push.finish (SP_ADMIT_*):
+// - histogram: each indicator's admission bin counted (connect.comp has
+//   completed what it hears);
 // - select: the budget (the quota, or the ring's free room) and the
-//   threshold bins (one thread, which also clears the histogram), while
-//   the other threads fold each step source's guide;
-// - the same two for the tie-break bins of the bin where a share runs out;
-// - the copy of the admitted indicators into the ring;
+//   threshold bins (one thread), while the other threads fold each step
+//   source's guide;
+// - the histogram of tie-break bins of the bins where a share runs out;
+// - the tie-break thresholds (each workgroup's first thread), and the
+//   admitted indicators' canonical keys marked in a bitmap; then (one
+//   workgroup) the running counts of its words: each one's place in the
+//   ring, so that it holds a step's spots in canonical order, as the CPU's;
+// - the copy of the admitted indicators into the ring, which also clears
+//   the histograms' counts for the next step;
 // - the ring's new head and size (one thread).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_admission.h"
-#include "sp_connect.h"
 #include "sp_guide.h"
-#include "sp_traverse.h"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
-void clear_histogram() {
-  for (uint b = 0u; b < SP_ADMISSION_BINS; ++b) admission_histogram[b] = 0u;
+shared uint chunk_counts[SP_WORKGROUP_SIZE];
+shared uint tiebreak_plan[SP_ADMISSION_CLASSES];
+
+// The canonical key of an indicator of this step: (iteration, ray, kind).
+uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }
+
+// One workgroup: the running count of admitted keys before each bitmap
+// word, stored after the bitmap.
+void order_words() {
+  uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
+  uint per = (words + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
+  uint t = gl_LocalInvocationID.x;
+  uint first = min(t * per, words);
+  uint last = min(first + per, words);
+  uint count = 0u;
+  for (uint w = first; w < last; ++w) count += bitCount(admission_histogram[SP_ORDER_BITMAP + w]);
+  chunk_counts[t] = count;
+  barrier();
+  if (t == 0u) {
+    uint sum = 0u;
+    for (uint k = 0u; k < SP_WORKGROUP_SIZE; ++k) {
+      uint here = chunk_counts[k];
+      chunk_counts[k] = sum;
+      sum += here;
+    }
+  }
+  barrier();
+  uint before = chunk_counts[t];
+  for (uint w = first; w < last; ++w) {
+    admission_histogram[SP_ORDER_BITMAP + words + w] = before;
+    before += bitCount(admission_histogram[SP_ORDER_BITMAP + w]);
+  }
 }
 
 // Slots of the ring whose indicator is live at step `now`. Births only grow
@@ -40,19 +72,6 @@ uint live_slots(uint now) {
   return filled - lo;
 }
 
-// Completes what `ind` hears at the listener; returns 1 when it cast.
-uint connect(inout Indicator ind) {
-  SimParams p = step_input.params;
-  Connection c = sp_connection(ind, p);
-  bool open = false;
-  if (c.candidate != 0u) {
-    HitInfo hit = sp_closest_hit(c.origin, c.dir, 0.0f, c.distance);
-    open = hit.triangle == SP_INVALID && hit.cut_short == 0u;
-  }
-  sp_finish_connection(ind, c, open, step_sources[ind.source_slot], p);
-  return c.candidate;
-}
-
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint phase = push.finish;
@@ -62,13 +81,11 @@ void main() {
     if (i != 0u) return;
     uint live = live_slots(step_input.params.step);
     sp_plan_admission(sp_admission_budget(step_input.ring_quota, capacity, live));
-    clear_histogram();
     return;
   }
-  if (phase == SP_ADMIT_TIEBREAK_SELECT) {
-    if (i != 0u) return;
-    sp_plan_tiebreak(SP_ADMISSION_CLASSES);
-    clear_histogram();
+
+  if (phase == SP_ADMIT_ORDER) {
+    order_words();
     return;
   }
   if (phase == SP_ADMIT_FINISH) {
@@ -77,6 +94,9 @@ void main() {
     control.ring_head = (control.ring_head + admitted) % capacity;
     control.ring_filled = min(capacity, control.ring_filled + admitted);
     control.draw_instance_count = control.ring_filled;
+    uint before = control.total_connections_lo;
+    control.total_connections_lo = before + control.step_connections;
+    if (control.total_connections_lo < before) control.total_connections_hi += 1u;
     return;
   }
   // The histograms and the copy run over the capture list; the copy and
@@ -84,39 +104,61 @@ void main() {
   bool valid = i < control.step_indicators;
   Indicator ind;
   uint bin = 0u;
-  if (phase == SP_ADMIT_HISTOGRAM) {
-    uint connected = 0u;
-    if (valid) {
-      ind = capture[i];
-      connected = connect(ind);
-      capture[i] = ind;
-      if (ind.heard > 0.0f) {
-        float relative = sp_heard_relative(ind, step_input.inv_indicator_size);
-        uint base = sp_guide_base(step_sources[ind.source_slot].source_id);
-        atomicAdd(guide[base + SP_GUIDE_PENDING + ind.emit_cell], sp_guide_spot_weight(relative, ind.toward));
-      }
-      atomicAdd(admission_histogram[sp_admission_bin(ind, step_input.inv_indicator_size)], 1u);
-    }
-    uint casts = subgroupAdd(connected);
-    if (subgroupElect() && casts > 0u) atomicAdd(control.step_connections, casts);
-    return;
-  }
   if (valid) {
     ind = capture[i];
     bin = sp_admission_bin(ind, step_input.inv_indicator_size);
   }
+  if (phase == SP_ADMIT_HISTOGRAM) {
+    if (valid) {
+      atomicAdd(admission_histogram[bin], 1u);
+      atomicAdd(admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)], 1u);
+    }
+    return;
+  }
   uint tiebreak = valid ? sp_admission_tiebreak(ind) : 0u;
   if (phase == SP_ADMIT_TIEBREAK_HISTOGRAM) {
-    if (valid && sp_in_tiebreak_bin(bin)) atomicAdd(admission_histogram[tiebreak], 1u);
+    if (valid && sp_in_tiebreak_bin(bin)) atomicAdd(admission_histogram[SP_ADMISSION_TIEBREAKS + tiebreak], 1u);
+    return;
+  }
+  if (phase == SP_ADMIT_MARK) {
+    // Each workgroup's first thread plans the tie-breaks (a few classes'
+    // worth of work, where a dispatch of its own would cost more), the
+    // first workgroup's also into the buffer for the copy.
+    if (gl_LocalInvocationID.x == 0u) {
+      for (uint c = 0u; c < SP_ADMISSION_CLASSES; ++c) {
+        uint remaining = admission_histogram[SP_ADMISSION_PLAN_REMAINING + c];
+        tiebreak_plan[c] = remaining == 0u ? sp_section_first(c) + sp_section_levels(c)
+                                           : sp_class_threshold(c, remaining, SP_ADMISSION_TIEBREAKS);
+        if (gl_WorkGroupID.x == 0u) admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c] = tiebreak_plan[c];
+      }
+    }
+    barrier();
+    uint c = sp_bin_class(bin);
+    uint threshold = admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c];
+    bool admitted = valid && (bin >= threshold || (bin + 1u == threshold && tiebreak >= tiebreak_plan[c]));
+    uint mark_key = valid ? order_key(ind) : 0u;
+    if (admitted) atomicOr(admission_histogram[SP_ORDER_BITMAP + mark_key / 32u], 1u << (mark_key % 32u));
     return;
   }
   bool admit = valid && sp_admitted(bin, tiebreak);
-  uvec4 ballot = subgroupBallot(admit);
-  uint total = subgroupBallotBitCount(ballot);
-  if (total == 0u) return;
-  uint base = 0u;
-  if (subgroupElect()) base = atomicAdd(control.admit_count, total);
-  base = subgroupBroadcastFirst(base);
-  // At most the budget <= capacity are admitted, so no two share a slot.
-  if (admit) ring[(control.ring_head + base + subgroupBallotExclusiveBitCount(ballot)) % capacity] = ind;
+  uint key = valid ? order_key(ind) : 0u;
+  uint word = key / 32u;
+  uint bit = 1u << (key % 32u);
+  // The copy also clears what the histograms counted, for the next step:
+  // only the bins and classes of this step's indicators can be non-zero,
+  // and only the plan and the order are read below.
+  if (valid) {
+    admission_histogram[bin] = 0u;
+    admission_histogram[SP_ADMISSION_TIEBREAKS + tiebreak] = 0u;
+    admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)] = 0u;
+  }
+  uint total = subgroupAdd(admit ? 1u : 0u);
+  if (subgroupElect() && total > 0u) atomicAdd(control.admit_count, total);
+  if (!admit) return;
+  // Its place: how many admitted keys come before it. At most the budget
+  // <= capacity are admitted, so no two share a slot.
+  uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
+  uint rank = admission_histogram[SP_ORDER_BITMAP + words + word] +
+              bitCount(admission_histogram[SP_ORDER_BITMAP + word] & (bit - 1u));
+  ring[(control.ring_head + rank) % capacity] = ind;
 }

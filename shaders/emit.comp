@@ -6,6 +6,7 @@
 #include "gpu_bindings.glsl"
 #include "sp_guide.h"
 #include "sp_ray_model.h"
+#include "sp_ring.h"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
@@ -23,8 +24,13 @@ void main() {
     control.step_casts = 0u;
     control.step_cut_short = 0u;
     control.step_connections = 0u;
+    control.connect_count = 0u;
   }
   if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
+  // The admission's order bitmap, which the last step's copy read.
+  uint order_words = SP_ORDER_WORDS(push.max_rays, push.iterations);
+  for (uint w = i; w < order_words; w += gl_NumWorkGroups.x * SP_WORKGROUP_SIZE)
+    admission_histogram[SP_ORDER_BITMAP + w] = 0u;
   if (i >= total) return;
 
   // Sources own contiguous ray ranges in ascending order: binary search.

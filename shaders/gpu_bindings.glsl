@@ -22,6 +22,7 @@ layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint count
 layout(std430, binding = SP_BINDING_ADMISSION) buffer AdmissionBuffer { uint admission_histogram[]; };
 layout(std430, binding = SP_BINDING_EDGES) readonly buffer EdgesBuffer { TriangleEdges triangle_edges[]; };
 layout(std430, binding = SP_BINDING_GUIDE) buffer GuideBuffer { uint guide[]; };
+layout(std430, binding = SP_BINDING_CONNECT) buffer ConnectBuffer { uint connect_queue[]; };
 
 layout(push_constant) uniform Push { WavefrontPush push; };
 

@@ -29,6 +29,10 @@ void main() {
   control.admit_group_count_y = 1u;
   control.admit_group_count_z = 1u;
   control.admit_count = 0u;
+  // The connect kernel runs over the spots resolve queued for it.
+  control.connect_group_count_x = group_count(control.connect_count);
+  control.connect_group_count_y = 1u;
+  control.connect_group_count_z = 1u;
   add64(control.total_indicators_lo, control.total_indicators_hi, made);
   add64(control.total_casts_lo, control.total_casts_hi, control.step_casts);
   add64(control.total_cut_short_lo, control.total_cut_short_hi, control.step_cut_short);

@@ -57,13 +57,35 @@ void main() {
 
   // Indicators: one atomic per subgroup reserves slots in the step's
   // capture list; admit.comp picks the ring's share of them after the step.
+  // A spot worth casting to the listener (sp_connection) is queued for the
+  // connect kernel, so that it casts from a compact list; the others are
+  // not heard, and say so at once.
+  bool connect_first = false;
+  bool connect_second = false;
+  if (made > 0u) {
+    connect_first = sp_connection(indicator, step_input.params).candidate != 0u;
+    if (!connect_first) indicator.heard = 0.0f;
+  }
+  if (made > 1u) {
+    connect_second = sp_connection(sheet_exit, step_input.params).candidate != 0u;
+    if (!connect_second) sheet_exit.heard = 0.0f;
+  }
   uint total = subgroupAdd(made);
+  uint base = 0u;
   if (total > 0u) {
-    uint base = 0u;
     if (subgroupElect()) base = atomicAdd(control.step_indicators, total);
     base = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(made);
     if (made > 0u) capture[base] = indicator;
     if (made > 1u) capture[base + 1u] = sheet_exit;
+  }
+  uint connect_made = (connect_first ? 1u : 0u) + (connect_second ? 1u : 0u);
+  uint connect_total = subgroupAdd(connect_made);
+  if (connect_total > 0u) {
+    uint at = 0u;
+    if (subgroupElect()) at = atomicAdd(control.connect_count, connect_total);
+    at = subgroupBroadcastFirst(at) + subgroupExclusiveAdd(connect_made);
+    if (connect_first) connect_queue[at++] = base;
+    if (connect_second) connect_queue[at] = base + 1u;
   }
   append_to_queue(queue_out, alive, resolving, ray_index);
 }

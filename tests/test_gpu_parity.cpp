@@ -50,7 +50,9 @@ class GpuParity : public test::GpuTest {
                   c.penetrations == g.penetrations && c.diffractions == g.diffractions &&
                   std::abs(c.energy - g.energy) <= 1e-4f &&
                   glm::length(sp::to_glm(c.position) - sp::to_glm(g.position)) <= 1e-4f &&
-                  std::abs(c.size - g.size) <= 1e-4f && c.intensity == g.intensity;
+                  std::abs(c.size - g.size) <= 1e-4f && c.intensity == g.intensity &&
+                  std::abs(c.heard_energy - g.heard_energy) <= 1e-4f && std::abs(c.toward - g.toward) <= 1e-4f &&
+                  glm::length(sp::to_glm(c.arrival) - sp::to_glm(g.arrival)) <= 1e-4f;
       identical += same;
     }
     const double fraction = double(identical) / double(cpu.indicators.size());

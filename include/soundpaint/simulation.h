@@ -159,6 +159,9 @@ struct SimulationStats {
   // packets) and ended there: 0 on any sane level; many mean a stack of
   // coincident or overlapping triangles (docs/model.md#work-bounds).
   std::uint64_t casts_cut_short = 0;
+  // Casts from spots to the listener (docs/model.md#cues-for-the-player):
+  // one for each spot whose face turns to the listener with energy enough.
+  std::uint64_t connections = 0;
   std::vector<LayerCounters> layers;  // per layer id
 };
 

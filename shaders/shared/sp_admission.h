@@ -19,14 +19,6 @@
 #define SP_ADMISSION_ARGS
 #endif
 
-// The plan of a step's admission, stored after the histogram's bins in the
-// same buffer: per class, its threshold bin, the rest of its share left for
-// the bin below it, and that bin's tie-break threshold.
-#define SP_ADMISSION_PLAN_THRESHOLD SP_ADMISSION_BINS
-#define SP_ADMISSION_PLAN_REMAINING (SP_ADMISSION_BINS + SP_ADMISSION_CLASSES)
-#define SP_ADMISSION_PLAN_TIEBREAK (SP_ADMISSION_BINS + 2u * SP_ADMISSION_CLASSES)
-#define SP_ADMISSION_BUFFER_SIZE (SP_ADMISSION_BINS + 3u * SP_ADMISSION_CLASSES)
-
 SP_BEGIN_NAMESPACE
 
 // How many indicators lie in bins [from, to).
@@ -36,21 +28,22 @@ SP_INLINE uint sp_admission_count(SP_ADMISSION_ARGS_DECL uint from, uint to) {
   return count;
 }
 
+// How many indicators class c has, as counted beside the histogram.
 SP_INLINE uint sp_class_count(SP_ADMISSION_ARGS_DECL uint c) {
-  uint first = sp_section_first(c);
-  return sp_admission_count(SP_ADMISSION_ARGS first, first + sp_section_levels(c));
+  return admission_histogram[SP_ADMISSION_CLASS_COUNTS + c];
 }
 
 // The lowest bin of class c's section such that the indicators in it and
 // above it (within the section) number at most `share`; the section's end
 // when even its top bin holds more.
-SP_INLINE uint sp_class_threshold(SP_ADMISSION_ARGS_DECL uint c, uint share) {
+// `histogram`: SP_ADMISSION_TIEBREAKS to read the tie-break bins, else 0.
+SP_INLINE uint sp_class_threshold(SP_ADMISSION_ARGS_DECL uint c, uint share, uint histogram) {
   uint first = sp_section_first(c);
   uint end = first + sp_section_levels(c);
   uint admitted = 0u;
   uint threshold = end;
   for (uint b = end; b > first; --b) {
-    uint more = admitted + admission_histogram[b - 1u];
+    uint more = admitted + admission_histogram[histogram + b - 1u];
     if (more > share) break;
     admitted = more;
     threshold = b - 1u;
@@ -79,12 +72,27 @@ SP_INLINE uint sp_class_share(uint quota, uint c, uint count0, uint count1, uint
   return shares[c];
 }
 
-// Sets class c's plan for a share of `share` indicators.
+// Sets class c's plan for a share of `share` indicators. A class with no
+// share (its threshold above every bin) or a share of all it has (below
+// every bin) needs no walk over its bins.
 SP_INLINE void sp_plan_class(SP_ADMISSION_ARGS_DECL_MUT uint c, uint share) {
-  uint threshold = sp_class_threshold(SP_ADMISSION_ARGS c, share);
-  uint end = sp_section_first(c) + sp_section_levels(c);
+  uint first = sp_section_first(c);
+  uint end = first + sp_section_levels(c);
+  uint count = sp_class_count(SP_ADMISSION_ARGS c);
+  uint threshold;
+  uint remaining;
+  if (share == 0u) {
+    threshold = end;
+    remaining = 0u;
+  } else if (share >= count) {
+    threshold = first;
+    remaining = share - count;
+  } else {
+    threshold = sp_class_threshold(SP_ADMISSION_ARGS c, share, 0u);
+    remaining = share - sp_admission_count(SP_ADMISSION_ARGS threshold, end);
+  }
   admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c] = threshold;
-  admission_histogram[SP_ADMISSION_PLAN_REMAINING + c] = share - sp_admission_count(SP_ADMISSION_ARGS threshold, end);
+  admission_histogram[SP_ADMISSION_PLAN_REMAINING + c] = remaining;
 }
 
 // Fills the plan's thresholds and remainders from the histogram of
@@ -127,13 +135,17 @@ SP_INLINE void sp_plan_admission(SP_ADMISSION_ARGS_DECL_MUT uint budget) {
   sp_plan_class(SP_ADMISSION_ARGS SP_ADMISSION_CLASS_ELSEWHERE, elsewhere);
 }
 
-// With the histogram now counting tie-break bins of each class's
+// With the tie-break histogram counting the tie-break bins of each class's
 // overflowing bin, fills the plan's tie-break thresholds of classes
 // [0, class_count) (all of them: SP_ADMISSION_CLASSES).
 SP_INLINE void sp_plan_tiebreak(SP_ADMISSION_ARGS_DECL_MUT uint class_count) {
-  for (uint c = 0u; c < class_count; ++c)
+  for (uint c = 0u; c < class_count; ++c) {
+    uint remaining = admission_histogram[SP_ADMISSION_PLAN_REMAINING + c];
+    // Nothing left for the bin below the threshold: no tie-break admits.
     admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c] =
-        sp_class_threshold(SP_ADMISSION_ARGS c, admission_histogram[SP_ADMISSION_PLAN_REMAINING + c]);
+        remaining == 0u ? sp_section_first(c) + sp_section_levels(c)
+                        : sp_class_threshold(SP_ADMISSION_ARGS c, remaining, SP_ADMISSION_TIEBREAKS);
+  }
 }
 
 // Whether an indicator in admission bin `bin`, tie-break bin `tiebreak`, is

@@ -30,26 +30,34 @@ SP_INLINE vec3 sp_arrival(vec3 position, SimParams p) {
   return vec3(d.x / len, d.y / len, d.z / len);
 }
 
-// The cast from a spot to the listener: from the spot pushed off its
-// surface, as a reflected ray starts, to the listener.
+// The way between a spot and the listener: the segment from the listener to
+// the spot pushed off its surface, as a reflected ray starts. It is cast
+// from the listener's end: every spot's cast then starts in the same
+// place, where a blocked way is most often blocked (the walls round the
+// player), so it stops early and walks nodes the last cast left in cache.
 struct Connection {
-  vec3 origin;
-  float distance;  // to the listener
-  vec3 dir;        // unit
+  vec3 origin;     // the listener
+  float distance;  // to the spot
+  vec3 dir;        // unit, from the listener to the spot
   uint candidate;  // 1: worth casting (faces the listener, enough energy)
 };
 
 SP_INLINE Connection sp_connection(Indicator ind, SimParams p) {
   Connection c;
-  SP_PRECISE vec3 origin = ind.position + ind.normal * SP_EPSILON;
-  c.origin = origin;
-  SP_PRECISE vec3 to = p.listener - c.origin;
+  SP_PRECISE vec3 spot = ind.position + ind.normal * SP_EPSILON;
+  c.origin = p.listener;
+  SP_PRECISE vec3 to = spot - p.listener;
+  SP_PRECISE float facing = -dot(ind.normal, to);
+  c.candidate = 0u;
+  c.distance = 0.0f;
+  c.dir = vec3(0.0f, 0.0f, 1.0f);
+  if ((p.cues & SP_CUES_LISTEN) == 0u || !(facing > 0.0f)) return c;  // most spots: no square root
   SP_PRECISE float len = sqrt(dot(to, to));
-  c.distance = len;
-  c.dir = len > 0.0f ? vec3(to.x / len, to.y / len, to.z / len) : vec3(0.0f, 0.0f, 1.0f);
-  SP_PRECISE float facing = dot(ind.normal, to);
   SP_PRECISE float arriving = ind.heard - len * p.air_attenuation;
-  c.candidate = (p.cues & SP_CUES_LISTEN) != 0u && facing > 0.0f && len > 0.0f && arriving > p.min_energy ? 1u : 0u;
+  if (!(len > 0.0f) || !(arriving > p.min_energy)) return c;
+  c.distance = len;
+  c.dir = vec3(to.x / len, to.y / len, to.z / len);
+  c.candidate = 1u;
   return c;
 }
 
@@ -70,8 +78,7 @@ SP_INLINE float sp_toward(vec3 arrival, vec3 source_position, SimParams p) {
 // Completes `ind` once its connection `c` was cast (`open`: nothing in the
 // way) or skipped: the energy that arrives, or 0, and how nearly it points
 // at `source`.
-SP_INLINE void sp_finish_connection(SP_INOUT(Indicator) ind, Connection c, bool open, StepSource source,
-                                    SimParams p) {
+SP_INLINE void sp_finish_connection(SP_INOUT(Indicator) ind, Connection c, bool open, StepSource source, SimParams p) {
   if (c.candidate == 0u || !open) {
     ind.heard = 0.0f;
     ind.toward = 0.0f;

@@ -20,7 +20,8 @@
 #define SP_BINDING_ADMISSION 11
 #define SP_BINDING_EDGES 12
 #define SP_BINDING_GUIDE 13
-#define SP_BINDING_COUNT 14
+#define SP_BINDING_CONNECT 14
+#define SP_BINDING_COUNT 15
 
 // Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
 // order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as
@@ -92,10 +93,20 @@ struct Control {
   uint step_cut_short;
   uint total_cut_short_lo;
   uint total_cut_short_hi;
-  // Casts from spots to the listener (sp_connect.h): this step's.
+  uint pad0;
+  // Casts from spots to the listener (sp_connect.h): this step's, and the run's.
   uint step_connections;
+  uint total_connections_lo;
+  uint total_connections_hi;
+  uint pad1;
+  // The connect kernel's dispatch over the step's spots worth casting (the
+  // connect queue, which resolve fills), and their count.
+  uint connect_group_count_x;
+  uint connect_group_count_y;
+  uint connect_group_count_z;
+  uint connect_count;
 };
-SP_CHECK_LAYOUT(sizeof(Control) == 192 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
+SP_CHECK_LAYOUT(sizeof(Control) == 224 && offsetof(Control, connect_group_count_x) == 208 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 
 // Written by the host before each step's submit.
 struct StepInput {
@@ -118,16 +129,17 @@ SP_CHECK_LAYOUT(sizeof(StepInput) == 112 && sizeof(StepInput) % 16 == 0);
 #define SP_ADMIT_HISTOGRAM 0u
 #define SP_ADMIT_SELECT 1u
 #define SP_ADMIT_TIEBREAK_HISTOGRAM 2u
-#define SP_ADMIT_TIEBREAK_SELECT 3u
 #define SP_ADMIT_COPY 4u
 #define SP_ADMIT_FINISH 5u
+#define SP_ADMIT_MARK 6u
+#define SP_ADMIT_ORDER 7u
 
 // Push constants of the wavefront kernels.
 struct WavefrontPush {
-  uint queue_in;  // 0 or 1: which queue this iteration consumes
-  uint finish;    // prepare: 1 on the step's last iteration
-  uint max_rays;  // capacity of each queue
-  uint pad0;
+  uint queue_in;    // 0 or 1: which queue this iteration consumes
+  uint finish;      // prepare: 1 on the step's last iteration; admit: its phase
+  uint max_rays;    // capacity of each queue
+  uint iterations;  // wavefront iterations a step records
 };
 SP_CHECK_LAYOUT(sizeof(WavefrontPush) == 16);
 

@@ -121,7 +121,8 @@ SP_INLINE uint sp_guide_pick(SP_GUIDE_ARGS_DECL uint base, uint pick) {
   uint hi = SP_GUIDE_CELLS - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
-    if (guide[base + SP_GUIDE_SUMS + mid] > pick) hi = mid; else lo = mid + 1u;
+    if (guide[base + SP_GUIDE_SUMS + mid] > pick) hi = mid;
+    else lo = mid + 1u;
   }
   return lo;
 }
@@ -138,7 +139,8 @@ SP_INLINE uint sp_guided_rays(uint ray_count, float guide_share) {
 // guide holds anything, the rest uniform on the sphere.
 SP_INLINE vec3 sp_source_emission(SP_GUIDE_ARGS_DECL StepSource source, uint ray_index, SimParams p,
                                   SP_OUT(uint) cell) {
-  if ((p.cues & SP_CUES_GUIDE) != 0u && ray_index - source.first_ray < sp_guided_rays(source.ray_count, p.guide_share)) {
+  if ((p.cues & SP_CUES_GUIDE) != 0u &&
+      ray_index - source.first_ray < sp_guided_rays(source.ray_count, p.guide_share)) {
     uint base = sp_guide_base(source.source_id);
     uint total = sp_guide_total(SP_GUIDE_ARGS base);
     if (total > 0u) {

@@ -50,6 +50,31 @@
 #define SP_ADMISSION_TOWARD_BINS (SP_ADMISSION_SOURCE_CLASSES * SP_ADMISSION_TOWARD_LEVELS)
 #define SP_ADMISSION_BINS (SP_ADMISSION_TOWARD_BINS + 4u * SP_ADMISSION_LEVELS)
 
+// The admission buffer (sp_admission.h uses it; the GPU keeps it whole).
+// The histogram of admission bins, then the histogram of
+// tie-break bins (two, so that neither needs clearing between the phases:
+// the copy phase clears what the step counted, in parallel), then the
+// plan of the step's admission: per class, its threshold bin, the rest of
+// its share left for the bin below it, and that bin's tie-break threshold;
+// then per class how many indicators it has (counted with the histogram,
+// so that planning reads a number a class, not its bins).
+#define SP_ADMISSION_TIEBREAKS SP_ADMISSION_BINS
+#define SP_ADMISSION_PLAN_THRESHOLD (2u * SP_ADMISSION_BINS)
+#define SP_ADMISSION_PLAN_REMAINING (2u * SP_ADMISSION_BINS + SP_ADMISSION_CLASSES)
+#define SP_ADMISSION_PLAN_TIEBREAK (2u * SP_ADMISSION_BINS + 2u * SP_ADMISSION_CLASSES)
+#define SP_ADMISSION_CLASS_COUNTS (2u * SP_ADMISSION_BINS + 3u * SP_ADMISSION_CLASSES)
+#define SP_ADMISSION_BUFFER_SIZE (2u * SP_ADMISSION_BINS + 4u * SP_ADMISSION_CLASSES)
+
+// The admitted indicators of a step go into the ring in canonical order
+// (iteration, ray, kind), as the CPU backend lays them, so that when later
+// steps overwrite part of a batch still live, both backends lose the same
+// spots. Their order is found with a bitmap over the canonical keys and
+// the running counts of its words, after the admission histograms in the
+// admission buffer; iterations run 1 .. `iterations`.
+#define SP_ORDER_KEYS(max_rays, iterations) (((iterations) + 1u) * (max_rays)*2u)
+#define SP_ORDER_WORDS(max_rays, iterations) ((SP_ORDER_KEYS(max_rays, iterations) + 31u) / 32u)
+#define SP_ORDER_BITMAP SP_ADMISSION_BUFFER_SIZE
+
 SP_BEGIN_NAMESPACE
 
 // Age of an indicator born at step `birth`, seen at step `now` (the last

@@ -207,6 +207,56 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   return best;
 }
 
+// Whether anything lies on the segment from `origin` along `dir` with
+// distance in (tmin, tmax]: the occlusion query of a spot's way to the
+// listener (sp_connect.h), with sp_closest_hit's acceptance (t in (tmin,
+// tmax]). It walks the tree as sp_closest_hit does with nothing found yet
+// and stops at the first triangle it meets, so it is blocked exactly when
+// sp_closest_hit finds a hit or runs out of work. A walk that
+// would pass SP_MAX_CAST_PACKETS counts as blocked: the way is not known
+// to be open.
+SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmin, float tmax) {
+  RayQuery q = sp_make_query(origin, dir, tmin, tmax);
+  uint stack[SP_BVH_MAX_DEPTH];
+  uint stack_size = 0u;
+  uint node_index = 0u;
+  uint packets = 0u;
+  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, tmax) == SP_FAR) return false;
+  for (;;) {
+    BvhNode node = bvh_nodes[node_index];
+    if (node.count > 0u) {
+      packets += SP_LEAF_PACKETS(node.count);
+      if (packets > SP_MAX_CAST_PACKETS) return true;
+      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
+        BvhTriangle tri = bvh_triangles[i];
+        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+        if (t < SP_FAR && t > q.tmin && t <= q.tmax) return true;
+      }
+    } else {
+      uint left = node.left_or_first;
+      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, tmax);
+      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, tmax);
+      if (t_left != SP_FAR || t_right != SP_FAR) {
+        if (t_left == SP_FAR) {
+          node_index = left + 1u;
+        } else if (t_right == SP_FAR) {
+          node_index = left;
+        } else {
+          bool left_first = t_left <= t_right;
+          node_index = left_first ? left : left + 1u;
+          stack[stack_size] = left_first ? left + 1u : left;
+          stack_size += 1u;
+        }
+        continue;
+      }
+    }
+    if (stack_size == 0u) break;
+    stack_size -= 1u;
+    node_index = stack[stack_size];
+  }
+  return false;
+}
+
 // SP_CROSSING_* of a face with unit front normal `normal` for a ray along
 // `dir`: entering when its front faces the ray.
 SP_INLINE uint sp_crossing(vec3 normal, vec3 dir) {

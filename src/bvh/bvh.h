@@ -68,6 +68,11 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t
 // shared sp_closest_hit's (shaders/shared/sp_traverse.h), t bit for bit.
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
+// Whether a triangle lies at a distance in (tmin, tmax] along `dir`: the
+// shared sp_segment_blocked (shaders/shared/sp_traverse.h) over `nodes`,
+// the GPU's walk, which stops at the first triangle it meets.
+bool segment_blocked(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
 // The nearest SP_MATTER_MAX_HITS hits with distance in (tmin, tmax], sorted
 // by (t, leaf order): the matter query of a penetrating ray. The answer of
 // the shared sp_nearest_hits (shaders/shared/sp_traverse.h), bit for bit.

@@ -25,6 +25,11 @@ shader::HitList nearest_hits(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, fl
   return list;
 }
 
+bool segment_blocked(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  if (bvh.nodes.empty()) return false;
+  return shader::sp_segment_blocked(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
+}
+
 HitInfo closest_hit_brute_force(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   const shader::RayQuery q = shader::sp_make_query(origin, dir, tmin, tmax);
   // Same start state and acceptance rule as sp_closest_hit, so that only the

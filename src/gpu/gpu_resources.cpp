@@ -5,6 +5,7 @@
 #include <string>
 
 #include "admit.comp.spv.h"
+#include "connect.comp.spv.h"
 #include "emit.comp.spv.h"
 #include "gpu/gpu_layout_checks.h"
 #include "sim/world_geometry.h"
@@ -113,8 +114,11 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   // per layer: SP_COUNTERS_PER_LAYER step counters, then as many (lo, hi) totals
   counters = vk::Buffer(context, bytes<std::uint32_t>(layer_count * SP_COUNTERS_PER_LAYER * 3), kStorage | kTransfer,
                         vk::MemoryUsage::DeviceLocal, "layer counters");
-  admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE), kStorage | kTransfer,
-                         vk::MemoryUsage::DeviceLocal, "ring admission histogram");
+  const std::uint64_t order_words = SP_ORDER_WORDS(std::uint64_t{max_rays}, std::uint64_t{iterations});
+  admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE + 2 * order_words),
+                         kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "ring admission histogram");
+  connect_queue = vk::Buffer(context, bytes<std::uint32_t>(capture_capacity), kStorage, vk::MemoryUsage::DeviceLocal,
+                             "connect queue");
   guide = vk::Buffer(context, bytes<std::uint32_t>(std::uint64_t{source_capacity} * SP_GUIDE_STRIDE),
                      kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "source guides");
   control_readback =
@@ -123,7 +127,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   std::vector<shader::Control> initial(1);
   initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
-  const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE, 0u);
+  const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE + 2 * order_words, 0u);
   const std::vector<std::uint32_t> empty_guides(
       std::max<std::size_t>(1, std::size_t{source_capacity} * SP_GUIDE_STRIDE), 0u);
   StagingPlan staging;
@@ -138,8 +142,9 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   staging.fill(context, *this);
 
   bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
-  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,   &triangles, &layers,  &step_input, &rays,      &hits,  &queues,
-                                               &control, &ring,      &capture, &counters,   &admission, &edges, &guide};
+  const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,    &triangles, &layers,  &step_input, &rays,
+                                               &hits,     &queues,    &control, &ring,       &capture,
+                                               &counters, &admission, &edges,   &guide,      &connect_queue};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
@@ -149,6 +154,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
       vk::ComputePipeline(context, sp_spirv_trace_matter_comp, bindings.layout(), push, "trace_matter");
   kernels.resolve = vk::ComputePipeline(context, sp_spirv_resolve_comp, bindings.layout(), push, "resolve");
   kernels.prepare = vk::ComputePipeline(context, sp_spirv_prepare_comp, bindings.layout(), push, "prepare");
+  kernels.connect = vk::ComputePipeline(context, sp_spirv_connect_comp, bindings.layout(), push, "connect");
   kernels.admit = vk::ComputePipeline(context, sp_spirv_admit_comp, bindings.layout(), push, "admit");
 }
 

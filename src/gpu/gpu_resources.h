@@ -22,6 +22,7 @@ struct Kernels {
   vk::ComputePipeline trace_matter;
   vk::ComputePipeline resolve;
   vk::ComputePipeline prepare;
+  vk::ComputePipeline connect;
   vk::ComputePipeline admit;
 };
 
@@ -50,6 +51,7 @@ struct GpuResources {
   vk::Buffer counters;                  // per-layer counters
   vk::Buffer admission;                 // the step's admission histogram (sp_ring.h)
   vk::Buffer guide;                     // each source id's guide (sp_guide.h)
+  vk::Buffer connect_queue;             // capture slots of the step's spots worth a cast to the listener
   vk::Buffer control_readback;          // copy of control after each step
 
   // Initial contents, copied by the first recorded step: where each part

@@ -116,6 +116,7 @@ class GpuSimulator final : public Simulator {
           stats.casts = join64(c.total_casts_lo, c.total_casts_hi);
           stats.max_casts_per_step = c.max_step_casts;
           stats.casts_cut_short = join64(c.total_cut_short_lo, c.total_cut_short_hi);
+          stats.connections = join64(c.total_connections_lo, c.total_connections_hi);
           stats.rays_emitted = join64(c.total_rays_lo, c.total_rays_hi);
           stats.indicators = join64(c.total_indicators_lo, c.total_indicators_hi);
           const std::size_t totals = layers * SP_COUNTERS_PER_LAYER;

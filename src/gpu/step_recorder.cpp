@@ -11,7 +11,7 @@ namespace {
 
 void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline& kernel, std::uint32_t queue_in,
           std::uint32_t finish) {
-  shader::WavefrontPush push{queue_in, finish, r.max_rays, 0};
+  shader::WavefrontPush push{queue_in, finish, r.max_rays, r.iterations};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.get());
   vkCmdPushConstants(cmd, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
 }
@@ -61,17 +61,24 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uin
     vk::compute_to_compute(cmd);
   }
 
+  // The spots resolve queued cast their way to the listener (connect.comp).
+  bind(cmd, r, r.kernels.connect, 0, 0);
+  vkCmdDispatchIndirect(cmd, r.control.get(), offsetof(shader::Control, connect_group_count_x));
+  // What they hear is read by the admission.
+  vk::compute_to_compute(cmd);
+
   // The ring admits its share of the step's indicators (admit.comp), each
   // phase reading what the one before wrote. The histogram and copy phases
   // run over the capture list; the planning ones are a single thread.
   const VkDeviceSize admit_args = offsetof(shader::Control, admit_group_count_x);
-  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM,       SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
-                                  SP_ADMIT_TIEBREAK_SELECT, SP_ADMIT_COPY,   SP_ADMIT_FINISH};
+  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM, SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
+                                  SP_ADMIT_MARK,      SP_ADMIT_ORDER,  SP_ADMIT_COPY,
+                                  SP_ADMIT_FINISH};
   for (std::uint32_t phase : phases) {
     if (phase != SP_ADMIT_HISTOGRAM) vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.admit, 0, phase);
-    const bool over_capture =
-        phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM || phase == SP_ADMIT_COPY;
+    const bool over_capture = phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM ||
+                              phase == SP_ADMIT_MARK || phase == SP_ADMIT_COPY;
     if (over_capture) {
       vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
     } else if (phase == SP_ADMIT_SELECT) {

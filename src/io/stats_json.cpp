@@ -36,6 +36,7 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
   json["rays_emitted"] = stats.rays_emitted;
   json["indicators"] = stats.indicators;
   json["casts_cut_short"] = stats.casts_cut_short;
+  json["connections"] = stats.connections;  // casts from spots to the listener
   std::uint64_t diffractions = 0;
   for (const LayerCounters& c : stats.layers) diffractions += c.diffractions;
   json["diffractions"] = diffractions;  // the run's total (contract: README.md, "Command line")

@@ -82,6 +82,7 @@ class CpuSimulator final : public Simulator {
       totals_.steps += 1;
       totals_.casts += last_.counters.casts;
       totals_.casts_cut_short += last_.counters.cut_short;
+      totals_.connections += last_.counters.connections;
       totals_.max_casts_per_step = std::max(totals_.max_casts_per_step, last_.counters.casts);
       totals_.rays_emitted += plan_.total_rays;
       totals_.indicators += last_.indicator_count();

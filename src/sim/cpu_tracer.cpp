@@ -74,8 +74,12 @@ void connect_indicators(const TraceContext& context, std::span<shader::Indicator
     const Connection c = sp_connection(ind, p);
     bool open = false;
     if (c.candidate != 0u) {
-      const HitInfo hit = context.embree ? context.embree->closest_hit(c.origin, c.dir, 0.0f, c.distance)
-                                         : closest_hit(*context.bvh, c.origin, c.dir, 0.0f, c.distance);
+      // The wide walk's closest hit: blocked exactly when the GPU's
+      // occlusion walk (sp_segment_blocked) says so. Both enter the same
+      // leaves in the same order until the first hit; the closest-hit walk
+      // may go on past it, and if it then runs out of work that still
+      // counts as blocked.
+      const HitInfo hit = closest_hit(*context.bvh, c.origin, c.dir, 0.0f, c.distance);
       open = hit.triangle == SP_INVALID && hit.cut_short == 0u;
       counters.connections += 1;
     }

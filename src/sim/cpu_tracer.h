@@ -51,8 +51,8 @@ void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVec
 
 // Casts each of `indicators`' way to the listener and completes what it
 // hears (sp_connect.h), when params.cues asks for it. The cast is the
-// closest-hit query of the forward casts (Embree's when the context has
-// it), so it finds what the GPU's finds.
+// GPU's occlusion walk (sp_segment_blocked), so it finds what the GPU's
+// finds, Embree or not.
 void connect_indicators(const TraceContext& context, std::span<shader::Indicator> indicators, TraceCounters& counters);
 
 }  // namespace sp

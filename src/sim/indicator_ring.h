@@ -82,8 +82,12 @@ class AdmissionPlan {
   // The histogram of admission bins, zero until counted.
   std::uint32_t* bins() { return buffer_.data(); }
   void plan_bins() {
+    for (std::uint32_t c = 0; c < SP_ADMISSION_CLASSES; ++c) {
+      const std::uint32_t first = shader::sp_section_first(c);
+      buffer_[SP_ADMISSION_CLASS_COUNTS + c] =
+          shader::sp_admission_count(buffer_.data(), first, first + shader::sp_section_levels(c));
+    }
     shader::sp_plan_admission(buffer_.data(), quota_);
-    std::fill_n(buffer_.data(), SP_ADMISSION_BINS, 0u);
   }
   // After plan_bins(): whether indicators of admission bin `bin` may be
   // admitted, at or above their class's overflowing bin; those below never are.
@@ -93,7 +97,9 @@ class AdmissionPlan {
   // After plan_bins(): whether indicators of admission bin `bin` need their
   // tie-break bin counted, and decided by it.
   bool in_tiebreak_bin(std::uint32_t bin) const { return shader::sp_in_tiebreak_bin(buffer_.data(), bin); }
-  void count_tiebreak(const shader::Indicator& ind) { buffer_[shader::sp_admission_tiebreak(ind)] += 1; }
+  void count_tiebreak(const shader::Indicator& ind) {
+    buffer_[SP_ADMISSION_TIEBREAKS + shader::sp_admission_tiebreak(ind)] += 1;
+  }
   void plan_tiebreaks() { shader::sp_plan_tiebreak(buffer_.data(), SP_ADMISSION_CLASSES); }
 
   // Whether the ring admits `ind`, one of the step's indicators, whose
@@ -107,7 +113,7 @@ class AdmissionPlan {
   bool admits(const shader::Indicator& ind) const { return all_ || admits(bin(ind), ind); }
 
  private:
-  std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer_{};  // histogram, then the plan
+  std::array<std::uint32_t, SP_ADMISSION_BUFFER_SIZE> buffer_{};  // histograms, then the plan
   std::uint32_t quota_;
   float inverse_size_;
   bool all_;  // the whole step fits in the quota
