@@ -60,6 +60,10 @@ Config probe_config(const Scene& scene, const Config& config, const CheckSetting
   probe.bounce_energy_loss = 0.0f;
   probe.scan_radius = 2.0f * kProbeRange;
   probe.budget_weighting = BudgetWeighting::Even;
+  // The probe counts penetrations: rays go out uniformly, and no spot is
+  // cast to a listener.
+  probe.cues.listen = false;
+  probe.cues.guide_share = 0.0f;
   probe.sources.clear();
   for (const std::string& name : scene.layer_names) {
     LayerProperties layer = resolve_layer(config, name);
