@@ -3,6 +3,7 @@
 // leave no temporary file behind and kill it with the same signal; a closed
 // or failing standard output is exit status 1, never a 0, and never lets
 // the text meant for it into another output file.
+#include <algorithm>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -216,6 +217,20 @@ TEST(CliSignals, AFailingStandardOutputIsExitStatusOne) {
   EXPECT_EQ(WEXITSTATUS(status), 1);
   EXPECT_NE(read_text(dir / "err.txt").find("cannot write standard output: Broken pipe"), std::string::npos)
       << read_text(dir / "err.txt");
+
+  // Indicators to `-` with no reader: the write's own error, once; the
+  // stream's would only say it again, as "Input/output error".
+  ASSERT_EQ(::pipe2(pipe_fds, O_CLOEXEC), 0);
+  ::close(pipe_fds[0]);
+  const int csv_status =
+      wait_for(start_cli({"simulate", kLevel, "--backend", "cpu", "--steps", "2", "--indicators", "-"},
+                         {Stdout::kDescriptor, pipe_fds[1]}, {}, dir / "err.txt", true));
+  ::close(pipe_fds[1]);
+  ASSERT_TRUE(WIFEXITED(csv_status)) << csv_status;
+  EXPECT_EQ(WEXITSTATUS(csv_status), 1);
+  const std::string err = read_text(dir / "err.txt");
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_NE(err.find("Broken pipe"), std::string::npos) << err;
 }
 
 }  // namespace

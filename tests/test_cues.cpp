@@ -260,8 +260,8 @@ TEST_P(Cues, AnotherSeedPaintsAnotherPicture) {
     auto sim = simulator(scene, room_config(seed));
     for (int n = 0; n < 10; ++n) ASSERT_TRUE(sim->step().ok());
     draw::Renderer renderer(*test::GpuEnvironment::context(), sim->world(), settings);
-    pictures.push_back(
-        renderer.render(draw::make_view_camera(std::nullopt, sim->world(), look, settings.width, settings.height), *sim));
+    pictures.push_back(renderer.render(
+        draw::make_view_camera(std::nullopt, sim->world(), look, settings.width, settings.height), *sim));
   }
   ASSERT_EQ(pictures[0].pixels.size(), pictures[1].pixels.size());
   std::size_t differ = 0;
@@ -334,6 +334,23 @@ TEST_P(Cues, AGuidedSourceFindsTheDoorToThePlayer) {
   EXPECT_GT(guided, 2 * uniform) << uniform << " heard unguided";
 }
 
+// One liveness rule on both backends: a spot of 0.3 s is live (and drawn)
+// for the display's 1/3 s, then neither. At dt = 1/16 s: ages 0 to 5/16 s.
+TEST_P(Cues, ASpotIsLiveForTheDisplaysLifetimeThenNot) {
+  Scene scene = room_with_source_behind();
+  scene.sources[0].duration = 1.0 / 32.0;  // the first step only
+  scene.sources[0].interval = 1000.0;
+  Config config = room_config(1);
+  config.dt = 1.0 / 16.0;
+  config.indicator_lifetime = 0.3f;
+  config.ray_budget = 100;
+  auto sim = simulator(scene, config);
+  for (int n = 0; n <= 5; ++n) ASSERT_TRUE(sim->step().ok());
+  EXPECT_FALSE(sim->live_indicators()->empty()) << "5/16 s old: under 1/3 s";
+  ASSERT_TRUE(sim->step().ok());
+  EXPECT_TRUE(sim->live_indicators()->empty()) << "6/16 s old: past the display's lifetime";
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, Cues, ::testing::Values(Backend::Cpu, Backend::Gpu),
                          [](const auto& c) { return c.param == Backend::Gpu ? "Gpu" : "Cpu"; });
 
@@ -341,7 +358,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, Cues, ::testing::Values(Backend::Cpu, Backend
 
 TEST(CueArrows, ASourceBehindAWallFromTheListenerIsOccludedAndOneInSightIsNot) {
   Scene scene;
-  add_box(scene, {-1, 0, -5}, {1, 3, -4}, "concrete");  // a wall 4 m ahead
+  add_box(scene, {-1, 0, -5}, {1, 3, -4}, "concrete");      // a wall 4 m ahead
   scene.sources.push_back(source_at({0.0f, 1.5f, -8.0f}));  // behind it
   scene.sources.push_back(source_at({3.0f, 1.5f, -8.0f}));  // beside it, in sight
   scene.sources.push_back(source_at({0.0f, 0.0f, -4.0f}));  // on the wall's face: not hidden by it

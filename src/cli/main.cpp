@@ -63,10 +63,13 @@ int main(int argc, char** argv) {
   if (!sp::reserve_standard_streams()) return 1;
   sp::remove_temporary_files_on_fatal_signals();
   const int status = run_command(std::vector<std::string>(argv + 1, argv + argc));
-  // Output lost on a full disk or a closed stdout is a failure, not a 0.
+  // Output lost on a full disk or a closed stdout is a failure, not a 0. A
+  // command that failed has said why already (a write to `-` that broke,
+  // say): the stream's error would only repeat it, less clearly.
   if (const auto error = sp::standard_output_error()) {
+    if (status != 0) return status;
     std::fprintf(stderr, "soundpaint: error: cannot write standard output: %s\n", error->c_str());
-    return status == 0 ? 1 : status;
+    return 1;
   }
   return status;
 }
