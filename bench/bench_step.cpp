@@ -24,6 +24,8 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "gpu/gpu_simulator.h"
+#include "io/output.h"
 #include "sp_types.h"
 
 namespace {
@@ -35,6 +37,7 @@ constexpr const char* kUsage =
     "                  [--steps N] [--warmup N] [--runs R] [--max-seconds S] [--pattern paper|burst|scene]\n"
     "                  [--bounces B] [--threads T] [--validate-steps N] [--json OUT.json] [--diffraction 0|1]\n"
     "                  [--cpu-traversal soundpaint|embree] [--cpu-walk best|baseline|avx512|avx512-8wide]\n"
+    "                  [--kernels N]\n"
     "  --scene        glTF level, or gen:N for a generated level of about N triangles (default: scenes/level.gltf)\n"
     "  --budgets      rays per step (default 100,500,2500: the paper's)\n"
     "  --steps        frames measured per run (default 2000, as the paper); --warmup frames before (default 60)\n"
@@ -47,7 +50,9 @@ constexpr const char* kUsage =
     "  --cpu-traversal  the config's cpu_traversal for the CPU backend (default soundpaint;\n"
     "                 embree needs a build with -DSOUNDPAINT_EMBREE=ON)\n"
     "  --cpu-walk     soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
-    "                (4-wide), avx512-8wide\n";
+    "                (4-wide), avx512-8wide\n"
+    "  --kernels      after each budget's GPU runs, N more steps with a timestamp after each kernel: per step\n"
+    "                 the dispatches and barriers recorded and the median GPU ms of each kernel (default 0)\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
@@ -63,6 +68,7 @@ struct Options {
   bool diffraction = false;
   sp::CpuTraversal cpu_traversal = sp::CpuTraversal::Soundpaint;
   std::string cpu_walk = "best";
+  std::uint32_t kernel_steps = 0;
 };
 
 Options parse(const CommandLine& cli, int argc, char** argv) {
@@ -82,6 +88,7 @@ Options parse(const CommandLine& cli, int argc, char** argv) {
     else if (flag == "--diffraction") o.diffraction = cli.to_uint(value, flag) != 0;
     else if (flag == "--pattern") o.pattern = spbench::parse_pattern(cli, value);
     else if (flag == "--cpu-walk") o.cpu_walk = value;
+    else if (flag == "--kernels") o.kernel_steps = cli.to_uint(value, flag);
     else if (flag == "--cpu-traversal") {
       if (value != "soundpaint" && value != "embree") cli.fail("--cpu-traversal must be soundpaint or embree");
       o.cpu_traversal = value == "embree" ? sp::CpuTraversal::Embree : sp::CpuTraversal::Soundpaint;
@@ -102,6 +109,48 @@ std::string format(const char* format_string, double value) {
   char text[32];
   std::snprintf(text, sizeof text, format_string, value);
   return text;
+}
+
+// Where a GPU step's time goes: the dispatches and barriers one step
+// records, and the median GPU ms of each kind of kernel over
+// options.kernel_steps steps with timestamps around them (after the same
+// warm-up as the timed runs, which run without them). Printed as one line.
+spbench::Json profile_kernels(const sp::World& world, unsigned threads, const Options& options) {
+  auto sim = spbench::make_simulator(world, "gpu", threads).value();
+  if (!sp::gpu::enable_step_profile(*sim)) {
+    std::printf("     kernels: no timestamps on this device\n");
+    return nullptr;
+  }
+  for (std::uint32_t n = 0; n < options.loop.warmup; ++n) spbench::run_frame(*sim, world.listener);
+  constexpr const char* kNames[sp::gpu::kStageKernelCount] = {"start",   "emit",    "trace", "resolve",
+                                                              "prepare", "connect", "admit"};
+  std::vector<std::vector<double>> ms(sp::gpu::kStageKernelCount);
+  std::vector<double> totals;
+  sp::gpu::RecordCounts counts;
+  for (std::uint32_t n = 0; n < options.kernel_steps; ++n) {
+    spbench::run_frame(*sim, world.listener);
+    const std::optional<sp::gpu::StepProfile> profile = sp::gpu::last_step_profile(*sim);
+    if (!profile || !profile->measured) continue;
+    counts = profile->counts;  // the same every step
+    double total = 0.0;
+    for (std::size_t k = 1; k < sp::gpu::kStageKernelCount; ++k) {
+      ms[k].push_back(profile->kernel_ms[k]);
+      total += profile->kernel_ms[k];
+    }
+    totals.push_back(total);
+  }
+  if (totals.empty()) return nullptr;
+  spbench::Json json = {{"dispatches", counts.dispatches}, {"barriers", counts.barriers}, {"steps", totals.size()}};
+  std::printf("     kernels: %u dispatches, %u barriers a step; median GPU ms:", counts.dispatches, counts.barriers);
+  for (std::size_t k = 1; k < sp::gpu::kStageKernelCount; ++k) {
+    const double median = sp::median(ms[k]);
+    json[std::string(kNames[k]) + "_ms"] = median;
+    std::printf(" %s %.4f", kNames[k], median);
+  }
+  json["total_ms"] = sp::median(totals);
+  std::printf(" (sum %.4f)\n", sp::median(totals));
+  std::fflush(stdout);
+  return json;
 }
 
 int run(const CommandLine& cli, const Options& options) {
@@ -163,6 +212,10 @@ int run(const CommandLine& cli, const Options& options) {
       row.update(spbench::to_json(s));
       row["paper_unity_overhead_ms"] =
           paper != kPaperOverheadMs.end() ? spbench::Json(paper->second) : spbench::Json(nullptr);
+      if (backend.name == "gpu" && options.kernel_steps > 0) {
+        const spbench::Json kernels = profile_kernels(world, threads, options);
+        if (!kernels.is_null()) row["kernels"] = kernels;
+      }
       results.push_back(row);
     }
   }

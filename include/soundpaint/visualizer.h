@@ -117,6 +117,7 @@ struct StageTimings {
   double prepare_ms = 0.0;   // the next iteration's indirect arguments
   double admit_ms = 0.0;     // the ring's admission of the step's indicators
   double cpu_step_ms = 0.0;  // CPU backend
+  double connect_ms = 0.0;   // the casts from spots to the listener (docs/model.md#cues-for-the-player)
 };
 
 class Visualizer {

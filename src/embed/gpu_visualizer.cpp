@@ -106,6 +106,9 @@ class GpuVisualizer final : public VisualizerBase {
           case gpu::StageKernel::Prepare:
             timings.prepare_ms += ms;
             break;
+          case gpu::StageKernel::Connect:
+            timings.connect_ms += ms;
+            break;
           case gpu::StageKernel::Admit:
             timings.admit_ms += ms;
             break;

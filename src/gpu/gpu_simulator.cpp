@@ -70,6 +70,7 @@ class GpuSimulator final : public Simulator {
           SP_VK_CHECK(vkResetFences(context_.device(), 1, &fence));
           std::memcpy(&last_control_, resources_.control_readback.mapped(), sizeof last_control_);
           read_timestamps();
+          read_profile();
           steps_run_ += 1;
           return true;
         },
@@ -151,6 +152,20 @@ class GpuSimulator final : public Simulator {
     return context_.queue_family() < count && families[context_.queue_family()].timestampValidBits > 0;
   }
 
+  // Per-kernel timestamps for later steps (StepProfile).
+ public:
+  bool enable_profile() {
+    if (!timestamps_) return false;
+    const std::uint32_t queries = stage_queries_per_step(engine_.iterations());
+    profile_pool_ = vk::create_timestamp_pool(context_, queries, "soundpaint step profile");
+    return true;
+  }
+  std::optional<StepProfile> profile() const {
+    if (!profile_pool_) return std::nullopt;
+    return profile_;
+  }
+
+ private:
   void record_one_step() {
     SP_VK_CHECK(vkResetCommandBuffer(command_buffer_, 0));
     VkCommandBufferBeginInfo begin{};
@@ -160,8 +175,33 @@ class GpuSimulator final : public Simulator {
     RecordOptions options;
     options.readback_control = true;
     options.timestamps = timestamps_.get();
+    profile_counts_ = RecordCounts{};
+    options.counts = &profile_counts_;
+    if (profile_pool_) {
+      const std::uint32_t queries = stage_queries_per_step(engine_.iterations());
+      vkCmdResetQueryPool(command_buffer_, profile_pool_.get(), 0, queries);
+      profile_stages_ = StageQueries{profile_pool_.get(), 0, queries, {}};
+      options.stages = &profile_stages_;
+    }
     engine_.record(command_buffer_, scene_, steps_run_, 1, options);
     SP_VK_CHECK(vkEndCommandBuffer(command_buffer_));
+  }
+
+  void read_profile() {
+    profile_.counts = profile_counts_;
+    if (!profile_pool_ || profile_stages_.kinds.empty()) return;
+    const auto count = static_cast<std::uint32_t>(profile_stages_.kinds.size());
+    std::vector<std::uint64_t> ticks(count);
+    SP_VK_CHECK(vkGetQueryPoolResults(context_.device(), profile_pool_.get(), 0, count,
+                                      ticks.size() * sizeof(std::uint64_t), ticks.data(), sizeof(std::uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    profile_.kernel_ms.fill(0.0);
+    const double tick_ms = double(context_.properties().limits.timestampPeriod) * 1e-6;
+    // Each timestamp ends the work of the kernel it is labelled with.
+    for (std::uint32_t k = 1; k < count; ++k)
+      profile_.kernel_ms[static_cast<std::size_t>(profile_stages_.kinds[k])] +=
+          double(ticks[k] - ticks[k - 1]) * tick_ms;
+    profile_.measured = true;
   }
 
   void read_timestamps() {
@@ -181,6 +221,10 @@ class GpuSimulator final : public Simulator {
   VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;  // freed with the pool
   vk::UniqueFence fence_;
   vk::UniqueQueryPool timestamps_;
+  vk::UniqueQueryPool profile_pool_;  // per-kernel timestamps, once enable_profile() ran
+  StageQueries profile_stages_;
+  RecordCounts profile_counts_;
+  StepProfile profile_;
   shader::Control last_control_{};
   double last_gpu_ms_ = 0.0;
   std::uint64_t steps_run_ = 0;
@@ -191,6 +235,17 @@ class GpuSimulator final : public Simulator {
 std::optional<IndicatorView> indicator_view(Simulator& simulator) {
   if (auto* gpu = dynamic_cast<GpuSimulator*>(&simulator)) return gpu->view();
   return std::nullopt;
+}
+
+bool enable_step_profile(Simulator& simulator) {
+  auto* gpu = dynamic_cast<GpuSimulator*>(&simulator);
+  return gpu != nullptr && gpu->enable_profile();
+}
+
+std::optional<StepProfile> last_step_profile(const Simulator& simulator) {
+  const auto* gpu = dynamic_cast<const GpuSimulator*>(&simulator);
+  if (gpu == nullptr) return std::nullopt;
+  return gpu->profile();
 }
 
 Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context) {

@@ -1,9 +1,11 @@
 // The GPU backend: the ray model as Vulkan compute, one submit per step.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 
+#include "gpu/stage_queries.h"
 #include "soundpaint/simulation.h"
 #include "sp_types.h"
 #include "vk/context.h"
@@ -35,5 +37,21 @@ struct IndicatorView {
 
 // The view of `simulator` if it is this GPU backend, else nothing.
 std::optional<IndicatorView> indicator_view(Simulator& simulator);
+
+// Where a GPU step's time goes (bench_step): what the step recorded, and
+// the GPU time of each kind of kernel from timestamps around its
+// dispatches (indexed by StageKernel; Start stays 0).
+struct StepProfile {
+  bool measured = false;  // false without timestamp support
+  RecordCounts counts;
+  std::array<double, kStageKernelCount> kernel_ms{};
+};
+
+// Turns the per-kernel timestamps on for later steps of `simulator`; false
+// when it is not this GPU backend. They cost a little: benchmarks time
+// steps without them.
+bool enable_step_profile(Simulator& simulator);
+// The last step's profile, once enabled and a step has run.
+std::optional<StepProfile> last_step_profile(const Simulator& simulator);
 
 }  // namespace sp::gpu
