@@ -25,6 +25,21 @@ void main() {
     control.step_cut_short = 0u;
     control.step_connections = 0u;
     control.connect_count = 0u;
+    control.admit_count = 0u;
+    control.tiebreak_count = 0u;
+    control.resolve_done = 0u;
+    control.connect_done = 0u;
+    control.tiebreak_done = 0u;
+    control.copy_done = 0u;
+    // The passes after the wavefront, until resolve says more: the connect
+    // pass always runs (its last workgroup plans the admission and keeps
+    // the totals); the admission's passes run over no indicator.
+    control.connect_group_count_x = 1u;
+    control.connect_group_count_y = 1u;
+    control.connect_group_count_z = 1u;
+    control.admit_group_count_x = 0u;
+    control.admit_group_count_y = 1u;
+    control.admit_group_count_z = 1u;
   }
   if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
   // The admission's order bitmap, which the last step's copy read.

@@ -15,13 +15,15 @@ layout(std430, binding = SP_BINDING_STEP_INPUT) readonly buffer StepInputBuffer 
 layout(std430, binding = SP_BINDING_RAYS) buffer RaysBuffer { RayState rays[]; };
 layout(std430, binding = SP_BINDING_HITS) buffer HitsBuffer { CastResult hits[]; };
 layout(std430, binding = SP_BINDING_QUEUES) buffer QueuesBuffer { uint queue_entries[]; };
-layout(std430, binding = SP_BINDING_CONTROL) buffer ControlBuffer { Control control; };
+// coherent: the last workgroup of a dispatch reads what the others wrote
+// (last_workgroup below); so do the admission's and the guides'.
+layout(std430, binding = SP_BINDING_CONTROL) coherent buffer ControlBuffer { Control control; };
 layout(std430, binding = SP_BINDING_RING) buffer RingBuffer { Indicator ring[]; };
 layout(std430, binding = SP_BINDING_CAPTURE) buffer CaptureBuffer { Indicator capture[]; };
 layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint counters[]; };
-layout(std430, binding = SP_BINDING_ADMISSION) buffer AdmissionBuffer { uint admission_histogram[]; };
+layout(std430, binding = SP_BINDING_ADMISSION) coherent buffer AdmissionBuffer { uint admission_histogram[]; };
 layout(std430, binding = SP_BINDING_EDGES) readonly buffer EdgesBuffer { TriangleEdges triangle_edges[]; };
-layout(std430, binding = SP_BINDING_GUIDE) buffer GuideBuffer { uint guide[]; };
+layout(std430, binding = SP_BINDING_GUIDE) coherent buffer GuideBuffer { uint guide[]; };
 layout(std430, binding = SP_BINDING_CONNECT) buffer ConnectBuffer { uint connect_queue[]; };
 
 layout(push_constant) uniform Push { WavefrontPush push; };
@@ -36,16 +38,46 @@ uint queue_entry(uint queue, uint i) {
 
 // Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
 uint group_count(uint invocations) { return (invocations + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE; }
-void set_queue_groups(uint queue) {
-  control.queues[queue].group_count_x = group_count(queue_length(queue));
+void set_queue_groups_for(uint queue, uint active_rays, uint resolving) {
+  control.queues[queue].group_count_x = group_count(active_rays + resolving);
   control.queues[queue].group_count_y = 1u;
   control.queues[queue].group_count_z = 1u;
-  control.queues[queue].active_groups_x = group_count(control.queues[queue].active_count);
+  control.queues[queue].active_groups_x = group_count(active_rays);
   control.queues[queue].active_groups_y = 1u;
   control.queues[queue].active_groups_z = 1u;
-  control.queues[queue].resolving_groups_x = group_count(control.queues[queue].resolving_count);
+  control.queues[queue].resolving_groups_x = group_count(resolving);
   control.queues[queue].resolving_groups_y = 1u;
   control.queues[queue].resolving_groups_z = 1u;
+}
+void set_queue_groups(uint queue) {
+  set_queue_groups_for(queue, control.queues[queue].active_count, control.queues[queue].resolving_count);
+}
+
+// Whether this is the last workgroup of its dispatch to finish, with every
+// other workgroup's writes visible: each makes its writes available, then
+// takes a ticket from `counter`; the one that takes the last does what a
+// one-thread dispatch after this one would have, saving a dispatch and a
+// barrier. Reached by every invocation (uniform control flow). GLSL passes
+// the counter by copy, so it is named by index: SP_TICKET_*.
+#define SP_TICKET_RESOLVE 0u
+#define SP_TICKET_CONNECT 1u
+#define SP_TICKET_TIEBREAK 2u
+#define SP_TICKET_COPY 3u
+shared uint last_workgroup_flag;
+bool last_workgroup(uint ticket) {
+  memoryBarrierBuffer();
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    uint taken;
+    if (ticket == SP_TICKET_RESOLVE) taken = atomicAdd(control.resolve_done, 1u);
+    else if (ticket == SP_TICKET_CONNECT) taken = atomicAdd(control.connect_done, 1u);
+    else if (ticket == SP_TICKET_TIEBREAK) taken = atomicAdd(control.tiebreak_done, 1u);
+    else taken = atomicAdd(control.copy_done, 1u);
+    last_workgroup_flag = taken + 1u == gl_NumWorkGroups.x ? 1u : 0u;
+  }
+  barrier();
+  memoryBarrierBuffer();
+  return last_workgroup_flag != 0u;
 }
 
 // Appends `value` to queue `queue` when `append`: at its front when

@@ -1,10 +1,14 @@
 #version 460
 // Stage (c)/(d): resolves each queued ray's cast with the shared ray model --
 // air loss, indicators, reflect or penetrate, forward steps, backcast
-// thickness -- and queues the rays still alive for the next iteration.
+// thickness -- and queues the rays still alive for the next iteration. Its
+// last workgroup turns the queue's length into the next iteration's
+// indirect arguments, and the step's counts so far into the dispatches
+// after the wavefront (a one-thread prepare dispatch did both).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_ray_model.h"
+#include "sp_ring.h"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
@@ -88,4 +92,35 @@ void main() {
     if (connect_second) connect_queue[at] = base + 1u;
   }
   append_to_queue(queue_out, alive, resolving, ray_index);
+
+  // A spot not worth a cast is not heard: its admission bin is final now.
+  // (connect.comp bins the others once they are heard.)
+  float inv_size = step_input.inv_indicator_size;
+  if (made > 0u && !connect_first) {
+    uint bin = sp_admission_bin(indicator, inv_size);
+    atomicAdd(admission_histogram[bin], 1u);
+    atomicAdd(admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)], 1u);
+  }
+  if (made > 1u && !connect_second) {
+    uint bin = sp_admission_bin(sheet_exit, inv_size);
+    atomicAdd(admission_histogram[bin], 1u);
+    atomicAdd(admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)], 1u);
+  }
+
+  if (last_workgroup(SP_TICKET_RESOLVE) && gl_LocalInvocationIndex == 0u) {
+    control.resolve_done = 0u;
+    // The next iteration runs over what this one queued; the queue it
+    // consumed is emptied for the iteration after.
+    uint active_rays = atomicAdd(control.queues[queue_out].active_count, 0u);
+    uint waiting = atomicAdd(control.queues[queue_out].resolving_count, 0u);
+    set_queue_groups_for(queue_out, active_rays, waiting);
+    control.queues[push.queue_in].active_count = 0u;
+    control.queues[push.queue_in].resolving_count = 0u;
+    set_queue_groups_for(push.queue_in, 0u, 0u);
+    // The passes after the wavefront, for the step so far: the casts to the
+    // listener (at least one workgroup: its last plans the admission) and
+    // the admission over the capture list.
+    control.connect_group_count_x = max(1u, group_count(atomicAdd(control.connect_count, 0u)));
+    control.admit_group_count_x = group_count(atomicAdd(control.step_indicators, 0u));
+  }
 }

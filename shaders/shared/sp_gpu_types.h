@@ -93,20 +93,28 @@ struct Control {
   uint step_cut_short;
   uint total_cut_short_lo;
   uint total_cut_short_hi;
-  uint pad0;
+  // Workgroups of the running dispatch that have finished: the last one
+  // does what a dispatch of one thread after it did (last_workgroup in
+  // gpu_bindings.glsl). Resolve's counts per iteration and resets itself;
+  // the others are reset by emit.
+  uint resolve_done;
   // Casts from spots to the listener (sp_connect.h): this step's, and the run's.
   uint step_connections;
   uint total_connections_lo;
   uint total_connections_hi;
-  uint pad1;
+  uint connect_done;
   // The connect kernel's dispatch over the step's spots worth casting (the
   // connect queue, which resolve fills), and their count.
   uint connect_group_count_x;
   uint connect_group_count_y;
   uint connect_group_count_z;
   uint connect_count;
+  uint tiebreak_done;
+  uint copy_done;
+  uint tiebreak_count;  // indicators in a class's overflowing bin, listed for the tie-break
+  uint pad0;
 };
-SP_CHECK_LAYOUT(sizeof(Control) == 224 && offsetof(Control, connect_group_count_x) == 208 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
+SP_CHECK_LAYOUT(sizeof(Control) == 240 && offsetof(Control, connect_group_count_x) == 208 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
 
 // Written by the host before each step's submit.
 struct StepInput {
@@ -122,17 +130,11 @@ struct StepInput {
 };
 SP_CHECK_LAYOUT(sizeof(StepInput) == 112 && sizeof(StepInput) % 16 == 0);
 
-// Push constants of the admission kernel (admit.comp).
-// The histogram phase first casts each indicator's way to the listener
-// (sp_connect.h) and adds what it is worth to its source's guide; the
-// select phase also folds each step source's guide (sp_guide.h).
-#define SP_ADMIT_HISTOGRAM 0u
-#define SP_ADMIT_SELECT 1u
-#define SP_ADMIT_TIEBREAK_HISTOGRAM 2u
-#define SP_ADMIT_COPY 4u
-#define SP_ADMIT_FINISH 5u
-#define SP_ADMIT_MARK 6u
-#define SP_ADMIT_ORDER 7u
+// The admission kernel's two passes (admit.comp), chosen by push.finish: the tie-break pass (whose last workgroup also marks the
+// admitted and orders them), then the copy into the ring (whose last
+// workgroup moves the ring's head). admit.comp says how.
+#define SP_ADMIT_TIEBREAK 0u
+#define SP_ADMIT_COPY 1u
 
 // Push constants of the wavefront kernels.
 struct WavefrontPush {

@@ -74,6 +74,9 @@
 #define SP_ORDER_KEYS(max_rays, iterations) (((iterations) + 1u) * (max_rays)*2u)
 #define SP_ORDER_WORDS(max_rays, iterations) ((SP_ORDER_KEYS(max_rays, iterations) + 31u) / 32u)
 #define SP_ORDER_BITMAP SP_ADMISSION_BUFFER_SIZE
+// Then the list of the step's indicators in a class's overflowing bin
+// (capture slots), whose tie-breaks are decided after the rest.
+#define SP_TIEBREAK_LIST(max_rays, iterations) (SP_ORDER_BITMAP + 2u * SP_ORDER_WORDS(max_rays, iterations))
 
 SP_BEGIN_NAMESPACE
 

@@ -12,7 +12,6 @@
 #include "sp_admission.h"
 #include "sp_draw_types.h"
 #include "sp_guide.h"
-#include "prepare.comp.spv.h"
 #include "resolve.comp.spv.h"
 #include "sim/step_plan.h"
 #include "sp_ring.h"
@@ -115,8 +114,11 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   counters = vk::Buffer(context, bytes<std::uint32_t>(layer_count * SP_COUNTERS_PER_LAYER * 3), kStorage | kTransfer,
                         vk::MemoryUsage::DeviceLocal, "layer counters");
   const std::uint64_t order_words = SP_ORDER_WORDS(std::uint64_t{max_rays}, std::uint64_t{iterations});
-  admission = vk::Buffer(context, bytes<std::uint32_t>(SP_ADMISSION_BUFFER_SIZE + 2 * order_words),
-                         kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "ring admission histogram");
+  // The admission's buffer: histograms and plan, the order bitmap and its
+  // running counts, and the list of tied indicators (sp_ring.h).
+  const std::uint64_t admission_words = SP_ADMISSION_BUFFER_SIZE + 2 * order_words + capture_capacity;
+  admission = vk::Buffer(context, bytes<std::uint32_t>(admission_words), kStorage | kTransfer,
+                         vk::MemoryUsage::DeviceLocal, "ring admission histogram");
   connect_queue = vk::Buffer(context, bytes<std::uint32_t>(capture_capacity), kStorage, vk::MemoryUsage::DeviceLocal,
                              "connect queue");
   guide = vk::Buffer(context, bytes<std::uint32_t>(std::uint64_t{source_capacity} * SP_GUIDE_STRIDE),
@@ -127,7 +129,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   std::vector<shader::Control> initial(1);
   initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
-  const std::vector<std::uint32_t> empty_admission(SP_ADMISSION_BUFFER_SIZE + 2 * order_words, 0u);
+  const std::vector<std::uint32_t> empty_admission(admission_words, 0u);
   const std::vector<std::uint32_t> empty_guides(
       std::max<std::size_t>(1, std::size_t{source_capacity} * SP_GUIDE_STRIDE), 0u);
   StagingPlan staging;
@@ -153,7 +155,6 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   kernels.trace_matter =
       vk::ComputePipeline(context, sp_spirv_trace_matter_comp, bindings.layout(), push, "trace_matter");
   kernels.resolve = vk::ComputePipeline(context, sp_spirv_resolve_comp, bindings.layout(), push, "resolve");
-  kernels.prepare = vk::ComputePipeline(context, sp_spirv_prepare_comp, bindings.layout(), push, "prepare");
   kernels.connect = vk::ComputePipeline(context, sp_spirv_connect_comp, bindings.layout(), push, "connect");
   kernels.admit = vk::ComputePipeline(context, sp_spirv_admit_comp, bindings.layout(), push, "admit");
 }

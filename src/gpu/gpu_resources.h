@@ -21,7 +21,6 @@ struct Kernels {
   vk::ComputePipeline trace;
   vk::ComputePipeline trace_matter;
   vk::ComputePipeline resolve;
-  vk::ComputePipeline prepare;
   vk::ComputePipeline connect;
   vk::ComputePipeline admit;
 };

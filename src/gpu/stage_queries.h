@@ -4,6 +4,7 @@
 // kernel whose work ends at it.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -11,7 +12,8 @@
 
 namespace sp::gpu {
 
-enum class StageKernel : std::uint8_t { Start, Emit, Trace, Resolve, Prepare, Admit };
+enum class StageKernel : std::uint8_t { Start, Emit, Trace, Resolve, Prepare, Connect, Admit };
+inline constexpr std::size_t kStageKernelCount = 7;
 
 // Queries [next, end) of `pool` are reset and free; record_step_dispatches
 // writes one per entry it appends to `kinds`, and stops writing (for the
@@ -23,8 +25,17 @@ struct StageQueries {
   std::vector<StageKernel> kinds;
 };
 
-// Timestamps one step writes: its start, emit, then trace, resolve and
-// prepare per wavefront iteration, and the admission.
-inline std::uint32_t stage_queries_per_step(std::uint32_t iterations) { return 3 + 3 * iterations; }
+// Timestamps one step writes: its start, emit, then trace and resolve per
+// wavefront iteration (resolve's last workgroup does what the prepare
+// dispatch did: Prepare stays unused), the casts to the listener and the
+// admission.
+inline std::uint32_t stage_queries_per_step(std::uint32_t iterations) { return 4 + 2 * iterations; }
+
+// What a step recorded: dispatches (direct and indirect, empty ones too)
+// and the pipeline barriers between them.
+struct RecordCounts {
+  std::uint32_t dispatches = 0;
+  std::uint32_t barriers = 0;
+};
 
 }  // namespace sp::gpu

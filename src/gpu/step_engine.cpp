@@ -41,6 +41,8 @@ IndicatorView StepEngine::view() {
 
 void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t first_step, std::uint32_t count,
                         const RecordOptions& options) {
+  RecordCounts ignored;
+  RecordCounts& counts = options.counts != nullptr ? *options.counts : ignored;
   const VkPipelineStageFlags2 stages = user_stages(options.graphics_queue);
   if (options.timestamps) {
     vkCmdResetQueryPool(cmd, options.timestamps, 0, 2);
@@ -48,6 +50,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
   }
   // WAR/WAW: earlier frames' kernels, copies and indicator draws are done
   // with the buffers before this frame's transfers and kernels touch them.
+  ++counts.barriers;
   vk::memory_barrier(cmd, stages, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
@@ -57,6 +60,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
   const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene);
   if (first && !(changes.nodes.empty() && changes.triangles.empty() && changes.edges.empty())) {
     // WAW: the rest pose's copy lands before the moved parts overwrite it.
+    ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   }
@@ -66,6 +70,7 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
     if (i > 0) {
       // WAR: the previous step's kernels have read the step input before
       // this step's inputs overwrite it.
+      ++counts.barriers;
       vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     }
@@ -73,23 +78,27 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
     record_step_input(cmd, scene.world(), first_step + i);
     // RAW: uploads (the step input; BVH and initial contents on the first
     // step) are visible to the kernels.
+    ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
                            VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    record_step_dispatches(cmd, resources_, static_cast<std::uint32_t>(plan_.sources.size()), options.stages);
+    record_step_dispatches(cmd, resources_, static_cast<std::uint32_t>(plan_.sources.size()), options.stages,
+                           options.counts);
   }
 
-  // RAW: the ring and the draw arguments the last prepare wrote reach the
+  // RAW: the ring and the draw arguments the admission wrote reach the
   // indicator draw (and the readback copy).
   VkAccessFlags2 readers =
       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT;
+  ++counts.barriers;
   vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, stages, readers);
   if (options.readback_control) {
     const VkBufferCopy region{0, 0, sizeof(shader::Control)};
     vkCmdCopyBuffer(cmd, resources_.control.get(), resources_.control_readback.get(), 1, &region);
     // Device -> host: the copy is visible to host reads after the fence.
+    ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
   }

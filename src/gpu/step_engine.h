@@ -28,6 +28,7 @@ struct RecordOptions {
   bool graphics_queue = true;
   VkQueryPool timestamps = VK_NULL_HANDLE;  // 2 queries: before and after, or none
   StageQueries* stages = nullptr;           // timestamps around each step's kernels, or none
+  RecordCounts* counts = nullptr;           // adds what the steps recorded, or none
 };
 
 class StepEngine {

@@ -18,8 +18,10 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
 
 }  // namespace
 
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t source_count,
-                            StageQueries* stages) {
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t /*source_count*/,
+                            StageQueries* stages, RecordCounts* counts) {
+  RecordCounts ignored;
+  RecordCounts& count = counts != nullptr ? *counts : ignored;
   if (stages != nullptr && stages->next + stage_queries_per_step(r.iterations) > stages->end) stages = nullptr;
   // After the kernels before it have finished (compute-shader stage).
   auto stamp = [&](StageKernel kind) {
@@ -33,64 +35,65 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uin
 
   bind(cmd, r, r.kernels.emit, 0, 0);
   const std::uint32_t emit_threads = std::max(r.max_rays, r.layer_count * SP_COUNTERS_PER_LAYER);
+  ++count.dispatches;
   vkCmdDispatch(cmd, (emit_threads + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE, 1, 1);
   stamp(StageKernel::Emit);
   // Emitted rays, queue 0 and its indirect arguments feed the first trace.
+  ++count.barriers;
   vk::compute_to_compute(cmd);
 
   for (std::uint32_t it = 0; it < r.iterations; ++it) {
     const std::uint32_t queue_in = it % 2;
     const VkDeviceSize args = offsetof(shader::Control, queues) + queue_in * sizeof(shader::QueueArgs);
     bind(cmd, r, r.kernels.trace, queue_in, 0);
+    ++count.dispatches;
     vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, active_groups_x));
-    // The two write the hits of disjoint rays: no barrier between them.
-    bind(cmd, r, r.kernels.trace_matter, queue_in, 0);
-    vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, resolving_groups_x));
+    // The two write the hits of disjoint rays: no barrier between them. No
+    // ray resolves a penetration in the first iteration: every ray there
+    // has just been emitted.
+    if (it > 0) {
+      bind(cmd, r, r.kernels.trace_matter, queue_in, 0);
+      ++count.dispatches;
+      vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, resolving_groups_x));
+    }
     stamp(StageKernel::Trace);
     // Hits written by trace and trace_matter are read by resolve.
+    ++count.barriers;
     vk::compute_to_compute(cmd);
     bind(cmd, r, r.kernels.resolve, queue_in, 0);
+    ++count.dispatches;
     vkCmdDispatchIndirect(cmd, r.control.get(), args);
     stamp(StageKernel::Resolve);
-    // The output queue's count, bumped by resolve, is read by prepare.
-    vk::compute_to_compute(cmd);
-    bind(cmd, r, r.kernels.prepare, queue_in, it + 1 == r.iterations ? 1u : 0u);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    stamp(StageKernel::Prepare);
-    // Prepare's group count is the next iteration's indirect argument.
+    // The output queue and the indirect arguments resolve's last workgroup
+    // wrote feed the next iteration (and, after the last, the passes below).
+    ++count.barriers;
     vk::compute_to_compute(cmd);
   }
 
-  // The spots resolve queued cast their way to the listener (connect.comp).
+  // The spots resolve queued cast their way to the listener (connect.comp);
+  // its last workgroup keeps the totals and plans the admission.
   bind(cmd, r, r.kernels.connect, 0, 0);
+  ++count.dispatches;
   vkCmdDispatchIndirect(cmd, r.control.get(), offsetof(shader::Control, connect_group_count_x));
-  // What they hear is read by the admission.
+  stamp(StageKernel::Connect);
+  ++count.barriers;
   vk::compute_to_compute(cmd);
 
-  // The ring admits its share of the step's indicators (admit.comp), each
-  // phase reading what the one before wrote. The histogram and copy phases
-  // run over the capture list; the planning ones are a single thread.
+  // The ring admits its share of the step's indicators (admit.comp): the
+  // tie-break pass, then the copy, both over the capture list.
   const VkDeviceSize admit_args = offsetof(shader::Control, admit_group_count_x);
-  const std::uint32_t phases[] = {SP_ADMIT_HISTOGRAM, SP_ADMIT_SELECT, SP_ADMIT_TIEBREAK_HISTOGRAM,
-                                  SP_ADMIT_MARK,      SP_ADMIT_ORDER,  SP_ADMIT_COPY,
-                                  SP_ADMIT_FINISH};
-  for (std::uint32_t phase : phases) {
-    if (phase != SP_ADMIT_HISTOGRAM) vk::compute_to_compute(cmd);
-    bind(cmd, r, r.kernels.admit, 0, phase);
-    const bool over_capture = phase == SP_ADMIT_HISTOGRAM || phase == SP_ADMIT_TIEBREAK_HISTOGRAM ||
-                              phase == SP_ADMIT_MARK || phase == SP_ADMIT_COPY;
-    if (over_capture) {
-      vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
-    } else if (phase == SP_ADMIT_SELECT) {
-      // Its first thread plans; a thread per step source folds a guide.
-      vkCmdDispatch(cmd, std::max(1u, (source_count + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE), 1, 1);
-    } else {
-      vkCmdDispatch(cmd, 1, 1, 1);
-    }
-  }
+  bind(cmd, r, r.kernels.admit, 0, SP_ADMIT_TIEBREAK);
+  ++count.dispatches;
+  vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
+  ++count.barriers;
+  vk::compute_to_compute(cmd);
+  bind(cmd, r, r.kernels.admit, 0, SP_ADMIT_COPY);
+  ++count.dispatches;
+  vkCmdDispatchIndirect(cmd, r.control.get(), admit_args);
   stamp(StageKernel::Admit);
   // The ring, the control block and the guides this step wrote reach the
   // next step's kernels.
+  ++count.barriers;
   vk::compute_to_compute(cmd);
 }
 

@@ -1,5 +1,6 @@
 // Records the dispatches of one step: emit, then per wavefront iteration
-// trace -> resolve -> prepare, with indirect dispatches sized on the GPU.
+// trace -> resolve (whose last workgroup prepares the next iteration), with
+// indirect dispatches sized on the GPU.
 // Nothing in it depends on the step (per-step data lives in the step input
 // buffer), so the same sequence serves every step.
 #pragma once
@@ -17,6 +18,6 @@ namespace sp::gpu {
 // after its spots are heard). With `stages`, timestamps go around its
 // kernels when the step fits.
 void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& resources, std::uint32_t source_count,
-                            StageQueries* stages = nullptr);
+                            StageQueries* stages = nullptr, RecordCounts* counts = nullptr);
 
 }  // namespace sp::gpu
