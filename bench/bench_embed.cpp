@@ -3,7 +3,11 @@
 //     per frame (what the host's frame budget pays on the CPU), for each
 //     backend, with the GPU time of the frame beside it; for the CPU
 //     backend also how many frames received a finished step;
-//  2. BVH refit of a moving door, per transform change, on the level and on
+//  2. what a game pays per frame, the paper's own metric (Figure 6): the
+//     host's whole frame (record, submit, wait) with the visualizer's
+//     simulation and draw in it, minus the same frame without them, at
+//     100, 500 and 2,500 rays (--overhead-budgets);
+//  3. BVH refit of a moving door, per transform change, on the level and on
 //     a large generated level (SoundScene::update_geometry), and the bytes a
 //     GPU upload of the changes carries.
 // Medians over frames; the bench plays the host (own context and command
@@ -40,6 +44,7 @@ struct Options {
   std::uint32_t big = 250000;  // triangles of the generated level for the refit; 0 skips it
   std::uint32_t width = 640;
   std::uint32_t height = 360;
+  std::vector<std::uint32_t> overhead_budgets = {100, 500, 2500};
 };
 
 Options parse(const spbench::CommandLine& cli, int argc, char** argv) {
@@ -51,6 +56,7 @@ Options parse(const spbench::CommandLine& cli, int argc, char** argv) {
     else if (flag == "--big") o.big = cli.to_uint(value, flag);
     else if (flag == "--width") o.width = cli.to_uint(value, flag);
     else if (flag == "--height") o.height = cli.to_uint(value, flag);
+    else if (flag == "--overhead-budgets") o.overhead_budgets = cli.to_uint_list(value, flag);
     else return false;
     return true;
   });
@@ -109,7 +115,9 @@ class Host {
     std::uint32_t steps = 0;     // steps recorded / handed over
   };
 
-  FrameTimes frame(sp::Visualizer& vis, const sp::draw::ViewCamera& camera, double dt) {
+  // One frame; without `vis`, the host's own frame alone (the clear and the
+  // copy out), the baseline of the overhead.
+  FrameTimes frame(sp::Visualizer* vis, const sp::draw::ViewCamera& camera, double dt) {
     FrameTimes t;
     const auto frame_start = Clock::now();
     SP_VK_CHECK(vkResetCommandBuffer(cmd_, 0));
@@ -117,13 +125,13 @@ class Host {
     begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     SP_VK_CHECK(vkBeginCommandBuffer(cmd_, &begin));
     auto start = Clock::now();
-    t.steps = vis.record_simulation(cmd_, dt).value();
+    if (vis != nullptr) t.steps = vis->record_simulation(cmd_, dt).value();
     t.simulation_ms = ms_since(start);
     const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     target_.begin(cmd_, clear);
     const VkRect2D area{{0, 0}, {target_.width(), target_.height()}};
     start = Clock::now();
-    vis.record_draw(cmd_, camera.view, camera.projection, &area).value();
+    if (vis != nullptr) vis->record_draw(cmd_, camera.view, camera.projection, &area).value();
     t.draw_ms = ms_since(start);
     target_.end_and_copy(cmd_);
     SP_VK_CHECK(vkEndCommandBuffer(cmd_));
@@ -160,7 +168,7 @@ void bench_record_calls(const Options& o, const sp::World& world) {
     std::vector<double> sim_ms, draw_ms, frame_ms;
     std::uint32_t frames_with_step = 0;
     for (std::uint32_t f = 0; f < o.frames + 30; ++f) {
-      const Host::FrameTimes t = host.frame(*vis, camera, world.config.dt);
+      const Host::FrameTimes t = host.frame(vis.get(), camera, world.config.dt);
       if (f < 30) continue;  // warm-up
       sim_ms.push_back(t.simulation_ms);
       draw_ms.push_back(t.draw_ms);
@@ -215,6 +223,45 @@ void bench_refit(const std::string& name, sp::Scene scene, const sp::Config& con
               name.c_str(), scene.triangle_count(), door, median(ms), bytes);
 }
 
+// The paper's metric: a game's frame with soundpaint minus without, per
+// budget and backend (the host's frame here: a clear and a copy out, so the
+// difference is all soundpaint's). Simulation and draw share the host's
+// queue: this device has no compute-only queue family to overlap them on
+// (docs/integrating.md, "Async compute", for a device that has one).
+void bench_overhead(const Options& o, const sp::Scene& scene, sp::Config config) {
+  const std::unique_ptr<sp::vk::Context> owned = sp::vk::Context::create().value();
+  sp::vk::Context& context = *owned;
+  Host host(context, o.width, o.height);
+  std::printf("frame overhead (frame with soundpaint - without), %u frames each, medians:\n", o.frames);
+  std::printf("backend  budget  without ms  with ms  overhead ms\n");
+  for (std::uint32_t budget : o.overhead_budgets) {
+    config.ray_budget = budget;
+    const sp::World world = sp::make_world(scene, config).value();
+    const sp::draw::ViewCamera camera = sp::draw::make_view_camera(std::nullopt, world, {}, o.width, o.height);
+    for (sp::BackendChoice backend : {sp::BackendChoice::Gpu, sp::BackendChoice::Cpu}) {
+      sp::VisualizerSettings settings;
+      settings.backend = backend;
+      sp::DrawTarget target;
+      target.color_format = sp::draw::RenderTarget::kColorFormat;
+      target.depth_format = sp::draw::RenderTarget::kDepthFormat;
+      auto vis = sp::Visualizer::create(host.vulkan(), target, world, settings).value();
+      // Alternating frames with and without, so that a drifting machine
+      // moves both alike.
+      std::vector<double> with_ms, without_ms;
+      for (std::uint32_t f = 0; f < o.frames + 30; ++f) {
+        const double with = host.frame(vis.get(), camera, world.config.dt).frame_ms;
+        const double without = host.frame(nullptr, camera, world.config.dt).frame_ms;
+        if (f < 30) continue;  // warm-up
+        with_ms.push_back(with);
+        without_ms.push_back(without);
+      }
+      std::printf("%-7s  %6u  %10.4f  %7.4f  %11.4f\n", backend == sp::BackendChoice::Gpu ? "gpu" : "cpu", budget,
+                  median(without_ms), median(with_ms), median(with_ms) - median(without_ms));
+      vkDeviceWaitIdle(context.device());
+    }
+  }
+}
+
 int run(const spbench::CommandLine& cli, const Options& o) {
   std::printf("host: %s\n", spbench::host_description().c_str());
   sp::Scene scene = spbench::load_scene_or_exit(cli, o.scene);
@@ -223,6 +270,7 @@ int run(const spbench::CommandLine& cli, const Options& o) {
   spbench::apply_pattern(scene, spbench::Pattern::Paper, config.dt);
   const sp::World world = sp::make_world(scene, config).value();
   bench_record_calls(o, world);
+  if (!o.overhead_budgets.empty()) bench_overhead(o, scene, config);
   bench_refit("level", scene, config);
   if (o.big > 0) bench_refit("generated", spbench::load_scene_or_exit(cli, "gen:" + std::to_string(o.big)), config);
   return 0;
@@ -233,6 +281,6 @@ int run(const spbench::CommandLine& cli, const Options& o) {
 int main(int argc, char** argv) {
   return spbench::bench_main(argc, argv, "bench_embed",
                              "usage: bench_embed [--scene FILE] [--frames N] [--budget RAYS] [--big TRIANGLES]\n"
-                             "                   [--width W] [--height H]",
+                             "                   [--width W] [--height H] [--overhead-budgets A,B,...]",
                              parse, run);
 }

@@ -5,20 +5,18 @@
 // - tie-break: an indicator at or above its class's threshold bin is
 //   admitted and marked in a bitmap of canonical keys; one in the bin just
 //   below (where the class's share runs out) counts its tie-break bin and is
-//   listed. The last workgroup then plans the tie-breaks, marks the listed
+//   listed. The last subgroup then plans the tie-breaks, marks the listed
 //   ones they admit, and writes the running counts of the bitmap's words:
 //   each admitted indicator's place, so that the ring holds a step's spots
 //   in canonical order, as the CPU's does;
 // - copy: the admitted indicators into the ring at their places, and what
-//   the histograms counted cleared for the next step; the last workgroup
+//   the histograms counted cleared for the next step; the last subgroup
 //   moves the ring's head.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_admission.h"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
-
-shared uint chunk_counts[SP_WORKGROUP_SIZE];
 
 // The canonical key of an indicator of this step: (iteration, ray, kind).
 uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }
@@ -28,51 +26,32 @@ void mark(Indicator ind) {
   atomicOr(admission_histogram[SP_ORDER_BITMAP + key / 32u], 1u << (key % 32u));
 }
 
-// The workgroup: the running count of admitted keys before each bitmap
-// word, stored after the bitmap.
-void order_words() {
-  uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
-  uint per = (words + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE;
-  uint t = gl_LocalInvocationIndex;
-  uint first = min(t * per, words);
-  uint last = min(first + per, words);
-  uint count = 0u;
-  for (uint w = first; w < last; ++w) count += bitCount(admission_histogram[SP_ORDER_BITMAP + w]);
-  chunk_counts[t] = count;
-  barrier();
-  if (t == 0u) {
-    uint sum = 0u;
-    for (uint k = 0u; k < SP_WORKGROUP_SIZE; ++k) {
-      uint here = chunk_counts[k];
-      chunk_counts[k] = sum;
-      sum += here;
-    }
-  }
-  barrier();
-  uint before = chunk_counts[t];
-  for (uint w = first; w < last; ++w) {
-    admission_histogram[SP_ORDER_BITMAP + words + w] = before;
-    before += bitCount(admission_histogram[SP_ORDER_BITMAP + w]);
-  }
-}
-
-// The tie-break pass's last workgroup: thresholds, the listed indicators
-// they admit, and the order.
+// The tie-break pass's last subgroup: the tie-break thresholds, the listed
+// indicators they admit, then the running count of admitted keys before
+// each bitmap word (stored after the bitmap), a subgroup's width of words
+// at a time.
 void decide_tiebreaks() {
-  uint t = gl_LocalInvocationIndex;
-  if (t == 0u) sp_plan_tiebreak(SP_ADMISSION_CLASSES);
-  memoryBarrierBuffer();
-  barrier();
+  if (subgroupElect()) sp_plan_tiebreak(SP_ADMISSION_CLASSES);
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
+  uint lane = gl_SubgroupInvocationID;
   uint listed = control.tiebreak_count;
   uint list = SP_TIEBREAK_LIST(push.max_rays, push.iterations);
-  for (uint k = t; k < listed; k += SP_WORKGROUP_SIZE) {
+  for (uint k = lane; k < listed; k += gl_SubgroupSize) {
     Indicator ind = capture[admission_histogram[list + k]];
     uint c = sp_bin_class(sp_admission_bin(ind, step_input.inv_indicator_size));
     if (sp_admission_tiebreak(ind) >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]) mark(ind);
   }
-  memoryBarrierBuffer();
-  barrier();
-  order_words();
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
+  uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
+  uint before = 0u;
+  for (uint first = 0u; first < words; first += gl_SubgroupSize) {
+    uint w = first + lane;
+    uint here = w < words ? bitCount(admission_histogram[SP_ORDER_BITMAP + w]) : 0u;
+    if (w < words) admission_histogram[SP_ORDER_BITMAP + words + w] = before + subgroupExclusiveAdd(here);
+    before += subgroupAdd(here);
+  }
 }
 
 void main() {
@@ -97,7 +76,7 @@ void main() {
     if (subgroupElect() && total > 0u) at = atomicAdd(control.tiebreak_count, total);
     at = subgroupBroadcastFirst(at) + subgroupBallotExclusiveBitCount(ballot);
     if (tied) admission_histogram[SP_TIEBREAK_LIST(push.max_rays, push.iterations) + at] = i;
-    if (last_workgroup(SP_TICKET_TIEBREAK)) decide_tiebreaks();
+    if (last_subgroup(SP_TICKET_TIEBREAK)) decide_tiebreaks();
     return;
   }
 
@@ -123,7 +102,7 @@ void main() {
                 bitCount(admission_histogram[SP_ORDER_BITMAP + word] & ((1u << (key % 32u)) - 1u));
     ring[(control.ring_head + rank) % step_input.ring_capacity] = ind;
   }
-  if (last_workgroup(SP_TICKET_COPY) && gl_LocalInvocationIndex == 0u) {
+  if (last_subgroup(SP_TICKET_COPY) && subgroupElect()) {
     uint capacity = step_input.ring_capacity;
     uint admitted = atomicAdd(control.admit_count, 0u);
     control.ring_head = (control.ring_head + admitted) % capacity;

@@ -81,12 +81,11 @@ void main() {
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_connections, casts);
 
-  if (!last_workgroup(SP_TICKET_CONNECT)) return;
-  uint t = gl_LocalInvocationIndex;
+  if (!last_subgroup(SP_TICKET_CONNECT)) return;
   // Each step source's guide takes in what its heard spots added.
-  for (uint s = t; s < step_input.source_count; s += SP_WORKGROUP_SIZE)
+  for (uint s = gl_SubgroupInvocationID; s < step_input.source_count; s += gl_SubgroupSize)
     sp_guide_fold(sp_guide_base(step_sources[s].source_id));
-  if (t != 0u) return;
+  if (!subgroupElect()) return;
   add_totals();
   uint live = live_slots(step_input.params.step);
   sp_plan_admission(sp_admission_budget(step_input.ring_quota, step_input.ring_capacity, live));

@@ -16,7 +16,7 @@ layout(std430, binding = SP_BINDING_RAYS) buffer RaysBuffer { RayState rays[]; }
 layout(std430, binding = SP_BINDING_HITS) buffer HitsBuffer { CastResult hits[]; };
 layout(std430, binding = SP_BINDING_QUEUES) buffer QueuesBuffer { uint queue_entries[]; };
 // coherent: the last workgroup of a dispatch reads what the others wrote
-// (last_workgroup below); so do the admission's and the guides'.
+// (last_subgroup below); so do the admission's and the guides'.
 layout(std430, binding = SP_BINDING_CONTROL) coherent buffer ControlBuffer { Control control; };
 layout(std430, binding = SP_BINDING_RING) buffer RingBuffer { Indicator ring[]; };
 layout(std430, binding = SP_BINDING_CAPTURE) buffer CaptureBuffer { Indicator capture[]; };
@@ -53,31 +53,32 @@ void set_queue_groups(uint queue) {
   set_queue_groups_for(queue, control.queues[queue].active_count, control.queues[queue].resolving_count);
 }
 
-// Whether this is the last workgroup of its dispatch to finish, with every
-// other workgroup's writes visible: each makes its writes available, then
-// takes a ticket from `counter`; the one that takes the last does what a
-// one-thread dispatch after this one would have, saving a dispatch and a
-// barrier. Reached by every invocation (uniform control flow). GLSL passes
-// the counter by copy, so it is named by index: SP_TICKET_*.
+// Whether this subgroup is the last of its dispatch to finish, with every
+// other invocation's writes visible: each subgroup makes its writes
+// available, then takes a ticket for its invocations from a counter; the
+// one whose tickets end the dispatch does what a one-thread dispatch after
+// this one would have, saving a dispatch and a barrier. No workgroup
+// barrier: on lavapipe each one splits the kernel into resumed pieces,
+// which cost more than the dispatch saved. Reached by every invocation
+// (uniform control flow, no early return before it). GLSL passes the
+// counter by copy, so it is named by index: SP_TICKET_*.
 #define SP_TICKET_RESOLVE 0u
 #define SP_TICKET_CONNECT 1u
 #define SP_TICKET_TIEBREAK 2u
 #define SP_TICKET_COPY 3u
-shared uint last_workgroup_flag;
-bool last_workgroup(uint ticket) {
+bool last_subgroup(uint ticket) {
   memoryBarrierBuffer();
-  barrier();
-  if (gl_LocalInvocationIndex == 0u) {
-    uint taken;
-    if (ticket == SP_TICKET_RESOLVE) taken = atomicAdd(control.resolve_done, 1u);
-    else if (ticket == SP_TICKET_CONNECT) taken = atomicAdd(control.connect_done, 1u);
-    else if (ticket == SP_TICKET_TIEBREAK) taken = atomicAdd(control.tiebreak_done, 1u);
-    else taken = atomicAdd(control.copy_done, 1u);
-    last_workgroup_flag = taken + 1u == gl_NumWorkGroups.x ? 1u : 0u;
+  uint mine = subgroupAdd(1u);
+  uint taken = 0u;
+  if (subgroupElect()) {
+    if (ticket == SP_TICKET_RESOLVE) taken = atomicAdd(control.resolve_done, mine);
+    else if (ticket == SP_TICKET_CONNECT) taken = atomicAdd(control.connect_done, mine);
+    else if (ticket == SP_TICKET_TIEBREAK) taken = atomicAdd(control.tiebreak_done, mine);
+    else taken = atomicAdd(control.copy_done, mine);
   }
-  barrier();
+  taken = subgroupBroadcastFirst(taken);
   memoryBarrierBuffer();
-  return last_workgroup_flag != 0u;
+  return taken + mine == gl_NumWorkGroups.x * SP_WORKGROUP_SIZE;  // every kernel's local_size_x
 }
 
 // Appends `value` to queue `queue` when `append`: at its front when

@@ -107,7 +107,7 @@ void main() {
     atomicAdd(admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)], 1u);
   }
 
-  if (last_workgroup(SP_TICKET_RESOLVE) && gl_LocalInvocationIndex == 0u) {
+  if (last_subgroup(SP_TICKET_RESOLVE) && subgroupElect()) {
     control.resolve_done = 0u;
     // The next iteration runs over what this one queued; the queue it
     // consumed is emptied for the iteration after.
