@@ -112,11 +112,15 @@ World one_triangle_world() {
   return make_world(scene, config).value();
 }
 
-TEST(PublicMath, WorldCopiesOwnTheirGeometry) {
+// Copies share one geometry (no deep copy); a change (a refit, through
+// mutate()) gives the changed copy its own, and never reaches the others.
+TEST(PublicMath, WorldCopiesShareTheirGeometryUntilOneChangesIt) {
   const World world = one_triangle_world();
   World copy = world;
   EXPECT_EQ(copy.triangle_count(), 1u);
-  copy.geometry->bvh.triangles.clear();
+  EXPECT_TRUE(copy.geometry.shares_with(world.geometry));
+  copy.geometry.mutate().bvh.triangles.clear();
+  EXPECT_FALSE(copy.geometry.shares_with(world.geometry));
   EXPECT_EQ(world.triangle_count(), 1u) << "a copy's refit or rebuild must not reach the original";
   EXPECT_EQ(copy.triangle_count(), 0u);
 }
@@ -134,7 +138,7 @@ TEST(PublicMath, AMovedFromWorldReadsAsEmpty) {
   assigned = moved_from;
   EXPECT_EQ(assigned.triangle_count(), 0u);
   // Written to, it gets geometry of its own again.
-  moved_from.geometry->bvh.triangles = taken.geometry->bvh.triangles;
+  moved_from.geometry.mutate().bvh.triangles = taken.geometry->bvh.triangles;
   EXPECT_EQ(moved_from.triangle_count(), 1u);
 }
 

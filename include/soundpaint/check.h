@@ -103,6 +103,10 @@ Result<CheckReport> check_scene(const Scene& scene, const Config& config, const 
 // when penetration mostly fails.
 Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& config,
                                            const CheckSettings& settings = {});
+// The same on `geometry`, built from `scene` (build_geometry, or a World's),
+// which it shares: no weld or BVH build of its own.
+Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& config, const CheckSettings& settings,
+                                           const WorldGeometryHandle& geometry);
 
 // The one-line warning `info` and `simulate` print, or "" when at most half
 // the probe's penetrations found no way out.

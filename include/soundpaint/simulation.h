@@ -76,10 +76,14 @@ struct WorldGeometry;      // src/sim/world_geometry.h
 struct SoundSceneBackend;  // src/sim/sound_scene_backend.h
 }  // namespace detail
 
-// The geometry a backend traces (the BVH, the rest pose of moving parts and
-// what rebuilding needs), opaque outside the library. Copied with its World
-// (deeply: copies never share a refit). A moved-from handle holds no
-// geometry and reads as an empty one (no triangles), copies included.
+// The level's geometry a backend traces (the BVH, which triangles form one
+// solid, the rest pose of moving parts and what rebuilding needs, and, once
+// a world with diffraction asks, the edges sound bends round), opaque
+// outside the library. Built once (build_geometry) and shared: copies of a
+// handle, and the Worlds, simulators, visualizers and probes made from
+// them, read one geometry; only a scene whose moving parts move gets a copy
+// of its own, when they first move. A moved-from handle holds no geometry
+// and reads as an empty one (no triangles).
 class WorldGeometryHandle {
  public:
   WorldGeometryHandle();
@@ -89,13 +93,16 @@ class WorldGeometryHandle {
   WorldGeometryHandle(WorldGeometryHandle&& other) noexcept;
   WorldGeometryHandle& operator=(WorldGeometryHandle&& other) noexcept;
 
-  detail::WorldGeometry& operator*();
   const detail::WorldGeometry& operator*() const;
-  detail::WorldGeometry* operator->() { return &**this; }
   const detail::WorldGeometry* operator->() const { return &**this; }
+  // The geometry to change (moving parts), this handle's own: copied first
+  // when it is shared, so that no other holder sees the change.
+  detail::WorldGeometry& mutate();
+  // Whether the two read the same geometry.
+  bool shares_with(const WorldGeometryHandle& other) const { return geometry_ == other.geometry_; }
 
  private:
-  std::unique_ptr<detail::WorldGeometry> geometry_;
+  std::shared_ptr<detail::WorldGeometry> geometry_;
 };
 
 // Everything a backend needs, resolved once: geometry, per-layer acoustics,
@@ -130,8 +137,24 @@ struct World {
 };
 
 // Resolves scene + config. Errors: no listener (neither a camera in the scene
-// nor config.listener), invalid source fields.
+// nor config.listener), invalid source fields, a config value out of range
+// (InvalidConfig naming the key, as the JSON reader does). Builds the
+// level's geometry: to make several worlds of one level (other settings,
+// another backend, a probe), build it once with build_geometry and use the
+// overload below.
 Result<World> make_world(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings = {});
+
+// The level's geometry, built once: weld and topology, the BVH, and what
+// moving parts need (the edges diffraction needs are built when a world
+// first asks). Errors: InvalidScene as make_world.
+Result<WorldGeometryHandle> build_geometry(const Scene& scene, const BvhBuildSettings& bvh_settings = {});
+
+// A World for `scene` and `config` around `geometry`, built from the same
+// scene: nothing is built again (diffraction's edges once, the first time
+// a world with diffraction on asks). Errors as make_world, and
+// InvalidArgument when `geometry` was built from another scene (its
+// triangle count differs).
+Result<World> make_world(const Scene& scene, const Config& config, WorldGeometryHandle geometry);
 
 // Counters of one layer (--stats; contract: README.md, "Command line").
 struct LayerCounters {

@@ -60,6 +60,10 @@ struct Bvh {
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
               std::span<const std::uint32_t> solids = {}, const BvhBuildSettings& settings = {});
 
+// BVHs built in this process so far (rebuilds of moving parts included):
+// what tests count to show that settings, backends and probes share one.
+std::uint64_t bvh_builds();
+
 // The queries below cannot fail: a ray that meets nothing (or an empty
 // tree) reports SP_INVALID.
 // Closest hit with distance in (tmin, tmax] along unit direction `dir`.

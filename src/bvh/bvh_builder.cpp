@@ -22,6 +22,7 @@
 // builds into a node run of its own (node_runs.h, placed once at the end),
 // and the big arrays sit on huge pages (large_array.h), whose first-touch
 // faults otherwise cost more than the build in a virtual machine.
+#include <atomic>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -562,8 +563,15 @@ class Builder {
 
 }  // namespace
 
+namespace {
+std::atomic<std::uint64_t> g_builds{0};
+}  // namespace
+
+std::uint64_t bvh_builds() { return g_builds.load(); }
+
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const std::uint32_t> layers,
               std::span<const std::uint32_t> solids, const BvhBuildSettings& settings) {
+  g_builds.fetch_add(1);
   const auto start = std::chrono::steady_clock::now();
   // Never read past either array (documented in bvh.h: the shorter wins).
   const auto count = static_cast<std::uint32_t>(std::min(vertices.size() / 3u, layers.size()));

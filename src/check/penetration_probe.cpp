@@ -130,9 +130,15 @@ Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& con
   return capture_errors(
       [&]() -> PenetrationProbe {
         return detail::probe_penetration_on(scene, config, settings,
-                                            detail::build_world_geometry(scene, config, BvhBuildSettings{}, nullptr));
+                                            detail::build_world_geometry(scene, BvhBuildSettings{}, nullptr));
       },
       ErrorCode::InvalidScene);
+}
+
+Result<PenetrationProbe> probe_penetration(const Scene& scene, const Config& config, const CheckSettings& settings,
+                                           const WorldGeometryHandle& geometry) {
+  return capture_errors([&] { return detail::probe_penetration_on(scene, config, settings, geometry); },
+                        ErrorCode::InvalidScene);
 }
 
 std::string work_bound_warning(const PenetrationProbe& probe) {

@@ -7,9 +7,9 @@
 
 namespace sp::detail {
 
-// probe_penetration on `geometry`, which was built from `scene` with
-// config's diffraction setting (detail::build_world_geometry, or a World's
-// own). Throws as probe_penetration's errors say.
+// probe_penetration on `geometry`, which was built from `scene`
+// (detail::build_world_geometry, or a World's own), shared, not copied.
+// Throws as probe_penetration's errors say.
 PenetrationProbe probe_penetration_on(const Scene& scene, const Config& config, const CheckSettings& settings,
                                       const WorldGeometryHandle& geometry);
 

@@ -198,9 +198,9 @@ Result<CheckReport> check_scene(const Scene& scene, const Config& config, const 
       [&]() -> CheckReport {
         CheckReport report;
         report.triangles = scene.triangle_count();
-        // The level is welded and built once; both probes run on copies.
+        // The level is welded and built once; both probes share it.
         MeshTopology topology;
-        const WorldGeometryHandle geometry = detail::build_world_geometry(scene, config, BvhBuildSettings{}, &topology);
+        const WorldGeometryHandle geometry = detail::build_world_geometry(scene, BvhBuildSettings{}, &topology);
         add_topology_findings(scene, topology, report.findings);
         add_scale_finding(scene, report.findings);
         report.probe = detail::probe_penetration_on(scene, config, settings, geometry);

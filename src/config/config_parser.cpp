@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/build_features.h"
+#include "config/config_rules.h"
 #include "config/cues_json.h"
 #include "config/diffraction_json.h"
 #include "config/display_json.h"
@@ -49,13 +50,14 @@ LayerEntry read_layer_entry(const json& value, const JsonPath& at) {
   const auto& object = expect_object(value, at, {"reflect_probability", "attenuation", "sheet_thickness"});
   LayerEntry entry;
   if (const auto it = object.find("reflect_probability"); it != object.end()) {
-    entry.reflect_probability = read_float(it->second, at.key("reflect_probability"), kUnitInterval);
+    entry.reflect_probability =
+        read_float(it->second, at.key("reflect_probability"), config_rules::kReflectProbability);
   }
   if (const auto it = object.find("attenuation"); it != object.end()) {
-    entry.attenuation = read_float(it->second, at.key("attenuation"), kNonNegative);
+    entry.attenuation = read_float(it->second, at.key("attenuation"), config_rules::kAttenuation);
   }
   if (const auto it = object.find("sheet_thickness"); it != object.end()) {
-    entry.sheet_thickness = read_float(it->second, at.key("sheet_thickness"), kNonNegative);
+    entry.sheet_thickness = read_float(it->second, at.key("sheet_thickness"), config_rules::kSheetThickness);
   }
   return entry;
 }
@@ -124,8 +126,8 @@ CpuTraversal read_cpu_traversal(const json& value, const JsonPath& at) {
 }
 
 constexpr KeyReader kKeyReaders[] = {
-    {"scan_radius",
-     [](const json& v, const JsonPath& at, Config& c) { c.scan_radius = read_float(v, at, kNonNegative); }},
+    {"scan_radius", [](const json& v, const JsonPath& at,
+                       Config& c) { c.scan_radius = read_float(v, at, config_rules::kScanRadius); }},
     {"ray_budget",
      [](const json& v, const JsonPath& at, Config& c) { c.ray_budget = read_uint32(v, at, 0, kMaxRayBudget); }},
     {"max_indicators", [](const json& v, const JsonPath& at,
@@ -137,18 +139,24 @@ constexpr KeyReader kKeyReaders[] = {
     {"max_bounces",
      [](const json& v, const JsonPath& at, Config& c) { c.max_bounces = read_uint32(v, at, 0, kMaxBouncesLimit); }},
     {"bounce_energy_loss",
-     [](const json& v, const JsonPath& at, Config& c) { c.bounce_energy_loss = read_float(v, at, kUnitInterval); }},
+     [](const json& v, const JsonPath& at, Config& c) {
+       c.bounce_energy_loss = read_float(v, at, config_rules::kBounceEnergyLoss);
+     }},
     {"max_wall_thickness",
-     [](const json& v, const JsonPath& at, Config& c) { c.max_wall_thickness = read_float(v, at, kPositive); }},
+     [](const json& v, const JsonPath& at, Config& c) {
+       c.max_wall_thickness = read_float(v, at, config_rules::kMaxWallThickness);
+     }},
     {"min_energy",
-     [](const json& v, const JsonPath& at, Config& c) { c.min_energy = read_float(v, at, kNonNegative); }},
-    {"air_attenuation",
-     [](const json& v, const JsonPath& at, Config& c) { c.air_attenuation = read_float(v, at, kNonNegative); }},
-    {"indicator_size",
-     [](const json& v, const JsonPath& at, Config& c) { c.indicator_size = read_float(v, at, kNonNegative); }},
+     [](const json& v, const JsonPath& at, Config& c) { c.min_energy = read_float(v, at, config_rules::kMinEnergy); }},
+    {"air_attenuation", [](const json& v, const JsonPath& at,
+                           Config& c) { c.air_attenuation = read_float(v, at, config_rules::kAirAttenuation); }},
+    {"indicator_size", [](const json& v, const JsonPath& at,
+                          Config& c) { c.indicator_size = read_float(v, at, config_rules::kIndicatorSize); }},
     {"indicator_lifetime",
-     [](const json& v, const JsonPath& at, Config& c) { c.indicator_lifetime = read_float(v, at, kPositive); }},
-    {"dt", [](const json& v, const JsonPath& at, Config& c) { c.dt = read_double(v, at, kPositive); }},
+     [](const json& v, const JsonPath& at, Config& c) {
+       c.indicator_lifetime = read_float(v, at, config_rules::kIndicatorLifetime);
+     }},
+    {"dt", [](const json& v, const JsonPath& at, Config& c) { c.dt = read_double(v, at, config_rules::kDt); }},
     {"seed", [](const json& v, const JsonPath& at, Config& c) { c.seed = read_uint32(v, at); }},
     {"layers", read_layers},
     {"listener", read_listener},

@@ -1,5 +1,7 @@
 #include "config/cues_json.h"
 
+#include "config/config_rules.h"
+
 #include <array>
 #include <string_view>
 
@@ -7,8 +9,6 @@ namespace sp::json_fields {
 namespace {
 
 constexpr std::array<std::string_view, 3> kCueKeys = {"listen", "guide_share", "toward_angle"};
-// A lobe of 0 degrees would hold no spot at all.
-constexpr NumberRange kTowardAngle{0.0, 180.0, true, false};
 
 }  // namespace
 
@@ -18,9 +18,9 @@ void read_cues(const nlohmann::json& value, const JsonPath& at, CueSettings& cue
     if (key == "listen") {
       cues.listen = read_bool(field, field_at);
     } else if (key == "guide_share") {
-      cues.guide_share = read_float(field, field_at, kUnitInterval);
+      cues.guide_share = read_float(field, field_at, config_rules::kGuideShare);
     } else if (key == "toward_angle") {
-      cues.toward_angle = read_float(field, field_at, kTowardAngle);
+      cues.toward_angle = read_float(field, field_at, config_rules::kTowardAngle);
     }
   }
 }

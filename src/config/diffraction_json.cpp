@@ -1,5 +1,7 @@
 #include "config/diffraction_json.h"
 
+#include "config/config_rules.h"
+
 #include <array>
 #include <string_view>
 
@@ -7,8 +9,6 @@ namespace sp::json_fields {
 namespace {
 
 constexpr std::array<std::string_view, 5> kDiffractionKeys = {"enabled", "edge_angle", "frequency", "reach", "gain"};
-// A turn of 0 degrees is a flat surface, which nothing bends round.
-constexpr NumberRange kEdgeAngle{0.0, 180.0, true, false};
 
 }  // namespace
 
@@ -18,13 +18,13 @@ void read_diffraction(const nlohmann::json& value, const JsonPath& at, Diffracti
     if (key == "enabled") {
       diffraction.enabled = read_bool(field, field_at);
     } else if (key == "edge_angle") {
-      diffraction.edge_angle = read_float(field, field_at, kEdgeAngle);
+      diffraction.edge_angle = read_float(field, field_at, config_rules::kEdgeAngle);
     } else if (key == "frequency") {
-      diffraction.frequency = read_float(field, field_at, kPositive);
+      diffraction.frequency = read_float(field, field_at, config_rules::kFrequency);
     } else if (key == "reach") {
-      diffraction.reach = read_float(field, field_at, kPositive);
+      diffraction.reach = read_float(field, field_at, config_rules::kReach);
     } else if (key == "gain") {
-      diffraction.gain = read_float(field, field_at, kUnitInterval);
+      diffraction.gain = read_float(field, field_at, config_rules::kDiffractionGain);
     }
   }
 }

@@ -50,7 +50,6 @@ SoundScene::SoundScene(World world) : world_(std::move(world)), inbox_(std::make
   one_shot_.resize(world_.sources.size(), false);
   instance_triangles_ = triangles_by_instance(*world_.geometry, world_.instance_names.size());
   world_.instance_transforms.resize(world_.instance_names.size());  // a World made by hand may lack them
-  if (!world_.instance_names.empty()) world_.geometry->build_sah_cost = absolute_sah_cost(world_.geometry->bvh);
   inbox_->slot_taken = world_.source_active;
   inbox_->taken =
       static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));

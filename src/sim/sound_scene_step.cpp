@@ -109,7 +109,9 @@ BvhChanges SoundScene::update_geometry() {
   }
   if (!geometry_pending_) return {};
   geometry_pending_ = false;
-  return move_geometry(*world_.geometry, world_.instance_transforms);
+  // The first move gives this scene a geometry of its own (the others that
+  // shared it keep the rest pose).
+  return move_geometry(world_.geometry.mutate(), world_.instance_transforms);
 }
 
 }  // namespace sp

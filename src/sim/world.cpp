@@ -7,10 +7,12 @@
 #include "bvh/diffraction_edges.h"
 #include "bvh/mesh_topology.h"
 #include "config/build_features.h"
+#include "config/config_rules.h"
 #include "core/finite.h"
 #include "core/glm_interop.h"
 #include "core/printable_text.h"
 #include "display/display_checks.h"
+#include "sim/geometry_update.h"
 #include "sim/source_checks.h"
 #include "sim/source_display.h"
 #include "sim/world_builder.h"
@@ -66,31 +68,12 @@ void check_source(const SourceDesc& s, std::size_t id) {
 
 namespace {
 
-// Guards API users who fill Config by hand; parse_config checks the same.
+// Guards API users who fill Config by hand with the JSON reader's own
+// table of ranges (config_rules.h): one rule per key, whichever way a
+// value came.
 void check_config(const Config& c) {
   auto fail = [](const std::string& what) { throw Exception(ErrorCode::InvalidConfig, what); };
-  auto non_negative = [&](float v, const char* key) {
-    if (!(v >= 0.0f) || !std::isfinite(v)) fail(std::string(key) + " must be finite and >= 0");
-  };
-  non_negative(c.scan_radius, "scan_radius");
-  non_negative(c.min_energy, "min_energy");
-  non_negative(c.air_attenuation, "air_attenuation");
-  non_negative(c.indicator_size, "indicator_size");
-  if (!(c.max_wall_thickness > 0.0f) || !std::isfinite(c.max_wall_thickness)) fail("max_wall_thickness must be > 0");
-  if (!(c.indicator_lifetime > 0.0f) || !std::isfinite(c.indicator_lifetime)) fail("indicator_lifetime must be > 0");
-  if (!(c.dt > 0.0) || !std::isfinite(c.dt)) fail("dt must be > 0");
-  if (!(c.bounce_energy_loss >= 0.0f && c.bounce_energy_loss <= 1.0f)) fail("bounce_energy_loss must be in [0, 1]");
-  if (c.max_bounces > kMaxBouncesLimit) fail("max_bounces must be <= " + std::to_string(kMaxBouncesLimit));
-  if (c.ray_budget > kMaxRayBudget) fail("ray_budget must be <= " + std::to_string(kMaxRayBudget));
-  if (c.max_indicators == 0 || c.max_indicators > kMaxIndicatorsLimit)
-    fail("max_indicators must be in [1, " + std::to_string(kMaxIndicatorsLimit) + "]");
-  for (const auto& [name, layer] : c.layers) {
-    if (!(layer.reflect_probability >= 0.0f && layer.reflect_probability <= 1.0f))
-      fail("layers." + printable_text(name) + ".reflect_probability must be in [0, 1]");
-    if (!(layer.attenuation >= 0.0f) || !std::isfinite(layer.attenuation))
-      fail("layers." + printable_text(name) + ".attenuation must be finite and >= 0");
-  }
-  if (c.listener_position && !all_finite(*c.listener_position)) fail("listener.position is not finite");
+  config_rules::check_numbers(c);
   if (c.cpu_traversal == CpuTraversal::Embree && !embree_available())
     fail(std::string("cpu_traversal: Embree ") + kEmbreeBuildHint);
   if (c.cpu_traversal != CpuTraversal::Soundpaint && c.cpu_traversal != CpuTraversal::Embree)
@@ -100,56 +83,83 @@ void check_config(const Config& c) {
 
 }  // namespace
 
-WorldGeometryHandle::WorldGeometryHandle() : geometry_(std::make_unique<detail::WorldGeometry>()) {}
+WorldGeometryHandle::WorldGeometryHandle() : geometry_(std::make_shared<detail::WorldGeometry>()) {}
 WorldGeometryHandle::~WorldGeometryHandle() = default;
-WorldGeometryHandle::WorldGeometryHandle(const WorldGeometryHandle& other)
-    : geometry_(std::make_unique<detail::WorldGeometry>(*other)) {}
-WorldGeometryHandle& WorldGeometryHandle::operator=(const WorldGeometryHandle& other) {
-  if (this != &other) geometry_ = std::make_unique<detail::WorldGeometry>(*other);
-  return *this;
-}
+WorldGeometryHandle::WorldGeometryHandle(const WorldGeometryHandle& other) = default;
+WorldGeometryHandle& WorldGeometryHandle::operator=(const WorldGeometryHandle& other) = default;
 // A moved-from handle's geometry is null: reading it gives the empty
-// geometry, writing it first gives it one of its own.
-detail::WorldGeometry& WorldGeometryHandle::operator*() {
-  if (!geometry_) geometry_ = std::make_unique<detail::WorldGeometry>();
-  return *geometry_;
-}
+// geometry, changing it first gives it one of its own.
 const detail::WorldGeometry& WorldGeometryHandle::operator*() const {
   static const detail::WorldGeometry empty{};
   return geometry_ ? *geometry_ : empty;
 }
+detail::WorldGeometry& WorldGeometryHandle::mutate() {
+  if (!geometry_) {
+    geometry_ = std::make_shared<detail::WorldGeometry>();
+  } else if (geometry_.use_count() > 1) {
+    geometry_ = std::make_shared<detail::WorldGeometry>(*geometry_);
+  }
+  return *geometry_;
+}
 WorldGeometryHandle::WorldGeometryHandle(WorldGeometryHandle&& other) noexcept = default;
 WorldGeometryHandle& WorldGeometryHandle::operator=(WorldGeometryHandle&& other) noexcept = default;
+
+namespace detail {
+
+WorldGeometry::WorldGeometry(const WorldGeometry& other)
+    : bvh(other.bvh),
+      rest_vertices(other.rest_vertices),
+      triangle_instances(other.triangle_instances),
+      triangle_layers(other.triangle_layers),
+      triangle_solids(other.triangle_solids),
+      edges_left_out(other.edges_left_out),
+      build_sah_cost(other.build_sah_cost) {
+  const std::lock_guard lock(other.edges_mutex_);
+  edges_found_ = other.edges_found_;
+}
+
+void WorldGeometry::ensure_exposed_edges() const {
+  const std::lock_guard lock(edges_mutex_);
+  if (edges_found_ || bvh.nodes.empty()) return;
+  // A cache of what the geometry already determines: filled once, under
+  // the lock, before any reader of the edges (a world with diffraction on)
+  // is made.
+  auto& self = const_cast<WorldGeometry&>(*this);
+  self.bvh.edges = find_exposed_edges(bvh, &self.edges_left_out);
+  edges_found_ = true;
+}
+
+}  // namespace detail
 
 std::size_t World::triangle_count() const { return geometry->bvh.triangle_count(); }
 
 namespace detail {
 
-WorldGeometryHandle build_world_geometry(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings,
+WorldGeometryHandle build_world_geometry(const Scene& scene, const BvhBuildSettings& bvh_settings,
                                          MeshTopology* topology_out) {
   check_scene(scene);
-  check_config(config);
-  WorldGeometryHandle geometry;
+  WorldGeometryHandle handle;
+  WorldGeometry& geometry = handle.mutate();
   // Which triangles form one piece of surface: the matter rules cross a
   // piece met through a shared edge once (docs/model.md#the-rules).
   std::vector<glm::vec3> vertices = to_glm(scene.vertices);
   MeshTopology topology = analyse_mesh(vertices, scene.triangle_layers, scene.layer_names.size());
-  geometry->bvh = build_bvh(vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
-  // The edges sound bends round, only when it may (docs/model.md#diffraction).
-  if (config.diffraction.enabled) geometry->bvh.edges = find_exposed_edges(geometry->bvh, &geometry->edges_left_out);
+  geometry.bvh = build_bvh(vertices, scene.triangle_layers, topology.triangle_solids, bvh_settings);
   if (!scene.instance_names.empty()) {
-    geometry->rest_vertices = std::move(vertices);
-    geometry->triangle_instances = scene.triangle_instances;
-    if (geometry->triangle_instances.empty())
-      geometry->triangle_instances.assign(scene.triangle_count(), kStaticInstance);
-    geometry->triangle_layers = scene.triangle_layers;
-    geometry->triangle_solids = topology.triangle_solids;
+    geometry.rest_vertices = std::move(vertices);
+    geometry.triangle_instances = scene.triangle_instances;
+    if (geometry.triangle_instances.empty())
+      geometry.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+    geometry.triangle_layers = scene.triangle_layers;
+    geometry.triangle_solids = topology.triangle_solids;
+    // What a refit's cost is compared with, to decide on a rebuild.
+    geometry.build_sah_cost = absolute_sah_cost(geometry.bvh);
   }
   if (topology_out != nullptr) *topology_out = std::move(topology);
-  return geometry;
+  return handle;
 }
 
-World make_world_around(const Scene& scene, const Config& config, WorldGeometryHandle geometry) {
+World make_world_around(const Scene& scene, const Config& config, WorldGeometryHandle geometry, bool check_geometry) {
   check_config(config);
   World world;
   world.config = config;
@@ -170,6 +180,13 @@ World make_world_around(const Scene& scene, const Config& config, WorldGeometryH
   world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
   for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
   for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
+  if (check_geometry && geometry->bvh.triangle_count() != scene.triangle_count())
+    throw Exception(ErrorCode::InvalidArgument, "make_world: the geometry has " +
+                                                    std::to_string(geometry->bvh.triangle_count()) +
+                                                    " triangles, the scene " + std::to_string(scene.triangle_count()) +
+                                                    ": it was built from another scene");
+  // The edges sound bends round, only when it may (docs/model.md#diffraction).
+  if (config.diffraction.enabled) geometry->ensure_exposed_edges();
   world.geometry = std::move(geometry);
   if (!scene.instance_names.empty()) {
     world.instance_names = scene.instance_names;
@@ -185,8 +202,20 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     // The cheap checks first: a bad source or a missing listener is
     // refused before the level's geometry is built.
     check_scene(scene);
-    (void)detail::make_world_around(scene, config, WorldGeometryHandle{});
-    return detail::make_world_around(scene, config, detail::build_world_geometry(scene, config, bvh_settings, nullptr));
+    check_config(config);
+    (void)detail::make_world_around(scene, config, WorldGeometryHandle{}, /*check_geometry=*/false);
+    return detail::make_world_around(scene, config, detail::build_world_geometry(scene, bvh_settings, nullptr));
+  });
+}
+
+Result<WorldGeometryHandle> build_geometry(const Scene& scene, const BvhBuildSettings& bvh_settings) {
+  return capture_errors([&] { return detail::build_world_geometry(scene, bvh_settings, nullptr); });
+}
+
+Result<World> make_world(const Scene& scene, const Config& config, WorldGeometryHandle geometry) {
+  return capture_errors([&] {
+    check_scene(scene);
+    return detail::make_world_around(scene, config, std::move(geometry));
   });
 }
 

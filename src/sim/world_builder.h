@@ -10,17 +10,19 @@
 
 namespace sp::detail {
 
-// The geometry make_world builds for `scene` (the BVH, with exposed edges
-// when config.diffraction is on, and what moving parts need), and the
+// The geometry make_world builds for `scene` (the BVH and what moving parts
+// need; exposed edges come when a world with diffraction asks), and the
 // mesh's topology in *topology_out when it is not null. Throws as
 // make_world does.
-WorldGeometryHandle build_world_geometry(const Scene& scene, const Config& config, const BvhBuildSettings& bvh_settings,
+WorldGeometryHandle build_world_geometry(const Scene& scene, const BvhBuildSettings& bvh_settings,
                                          MeshTopology* topology_out);
 
 // A World for `scene` and `config` around `geometry`, which must have been
-// built from the same scene (its triangle layers checked, so this takes
-// its layers, sources and camera and never reads its vertices) with the
-// same diffraction setting. Throws as make_world does.
-World make_world_around(const Scene& scene, const Config& config, WorldGeometryHandle geometry);
+// built from the same scene (its triangle count checked unless
+// `check_geometry` is false, for make_world's cheap checks before the
+// build; this takes the scene's layers, sources and camera and never reads
+// its vertices). Throws as make_world does.
+World make_world_around(const Scene& scene, const Config& config, WorldGeometryHandle geometry,
+                        bool check_geometry = true);
 
 }  // namespace sp::detail

@@ -75,6 +75,9 @@ class Surface {
 // What the viewer can change and rebuild a visualizer from.
 struct Session {
   Scene scene;
+  // The level's geometry, built once: every rebuild of the visualizer (a
+  // new ray budget, a reloaded config, the other backend) shares it.
+  WorldGeometryHandle geometry;
   Config config;
   BackendChoice backend = BackendChoice::Auto;
   std::vector<SourceDesc> placed;  // sources placed by clicking, kept across rebuilds
@@ -269,7 +272,7 @@ void Viewer::apply_change() {
   if (!wanted.reload) wanted.config.display = painting_.visualizer->display();
   try {
     Painting next =
-        paint(*context_, *swapchain_, make_world(session_.scene, wanted.config).value(),
+        paint(*context_, *swapchain_, make_world(session_.scene, wanted.config, session_.geometry).value(),
               {.backend = wanted.backend, .memory_budget_bytes = options_.memory_budget_bytes}, session_.placed);
     painting_ = std::move(next);
     session_.config = std::move(wanted.config);
@@ -600,7 +603,8 @@ std::uint32_t run_viewer(const ViewerOptions& options) {
   session.backend = options.backend;
   // Bad sources and the like fail before a window opens; the World is the
   // viewer's first.
-  World world = make_world(session.scene, session.config).value();
+  session.geometry = build_geometry(session.scene).value();
+  World world = make_world(session.scene, session.config, session.geometry).value();
 
   Window window(options.width, options.height, "soundpaint view: " + options.scene_path);
   std::uint32_t messages = 0;
