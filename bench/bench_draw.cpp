@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "draw/host_indicators.h"
-#include "draw/renderer.h"
-#include "draw/view_camera.h"
+#include "render/host_indicators.h"
+#include "render/renderer.h"
+#include "render/view_camera.h"
 #include "io/output.h"
 #include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"

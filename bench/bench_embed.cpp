@@ -23,8 +23,8 @@
 
 #include "bench_common.h"
 #include "core/glm_interop.h"
-#include "draw/render_target.h"
-#include "draw/view_camera.h"
+#include "render/render_target.h"
+#include "render/view_camera.h"
 #include "generated_level.h"
 #include "sim/sound_scene_backend.h"
 #include "soundpaint/visualizer.h"

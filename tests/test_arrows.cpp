@@ -23,8 +23,8 @@
 #include <glm/mat4x4.hpp>
 
 #include "draw/display_frame.h"
-#include "draw/host_indicators.h"
-#include "draw/renderer.h"
+#include "render/host_indicators.h"
+#include "render/renderer.h"
 #include "sp_arrows.h"
 #include "sp_draw_types.h"
 #include "support/gpu_environment.h"

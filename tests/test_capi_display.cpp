@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "capi/display_c.h"
-#include "draw/render_target.h"
+#include "render/render_target.h"
 #include "soundpaint/soundpaint_vulkan.h"
 #include "sp_types.h"
 #include "support/gpu_environment.h"

@@ -14,9 +14,9 @@
 
 #include "core/glm_interop.h"
 #include "draw/display_sources.h"
-#include "draw/render_target.h"
-#include "draw/renderer.h"
-#include "draw/view_camera.h"
+#include "render/render_target.h"
+#include "render/renderer.h"
+#include "render/view_camera.h"
 #include "sim/cpu_tracer.h"
 #include "sp_connect.h"
 #include "sp_guide.h"

@@ -22,8 +22,8 @@
 #include <glm/mat4x4.hpp>
 
 #include "draw/display_sources.h"
-#include "draw/host_indicators.h"
-#include "draw/renderer.h"
+#include "render/host_indicators.h"
+#include "render/renderer.h"
 #include "sim/indicator_ring.h"
 #include "sp_shapes.h"
 #include "sp_types.h"

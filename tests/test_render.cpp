@@ -12,7 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "draw/renderer.h"
+#include "render/renderer.h"
 #include "sim/world_geometry.h"
 #include "sp_types.h"
 #include "support/gpu_environment.h"

@@ -14,8 +14,8 @@
 
 #include <glm/glm.hpp>
 
-#include "draw/render_target.h"
-#include "draw/view_camera.h"
+#include "render/render_target.h"
+#include "render/view_camera.h"
 #include "soundpaint/visualizer.h"
 #include "sp_types.h"
 #include "support/gpu_environment.h"

@@ -7,7 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "draw/view_camera.h"
+#include "render/view_camera.h"
 
 namespace sp::view {
 

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "draw/scene_mesh.h"
+#include "render/scene_mesh.h"
 
 namespace sp::view {
 

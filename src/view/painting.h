@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "draw/scene_pass.h"
+#include "render/scene_pass.h"
 #include "soundpaint/simulation.h"
 #include "soundpaint/visualizer.h"
 #include "view/swapchain.h"

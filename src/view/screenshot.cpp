@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "draw/image_barrier.h"
-#include "draw/png_writer.h"
+#include "render/png_writer.h"
 #include "vk/barriers.h"
 
 namespace sp::view {

@@ -9,7 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "draw/render_target.h"
+#include "render/render_target.h"
 #include "vk/context.h"
 #include "vk/handle.h"
 

@@ -20,7 +20,7 @@
 #include "core/printable_text.h"
 #include "draw/image_barrier.h"
 #include "draw/rendering.h"
-#include "draw/scene_pass.h"
+#include "render/scene_pass.h"
 #include "bvh/bvh.h"
 #include "soundpaint/config.h"
 #include "soundpaint/display.h"

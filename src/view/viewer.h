@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "draw/view_camera.h"
+#include "render/view_camera.h"
 #include "soundpaint/scene.h"
 #include "soundpaint/simulation.h"
 

@@ -66,6 +66,15 @@ case "$mode" in
     if grep -rlF -e "$SP_SOURCE_DIR" -e "$SP_BUILD_DIR" -e "$prefix" "$prefix" --include='*.cmake' --include='*.pc'; then
       fail "an installed package file names the source, build or install folder (above)"
     fi
+    # The library is what an engine links: no tool module (the offline
+    # renderer, its PNG writer and stb, the CLI's output files) inside it.
+    lib="$(find "$prefix" -name 'libsoundpaint.[as]*' -type f -print -quit)"
+    if nm -C "$lib" 2>/dev/null | grep -E ' (T|U) .*(stbi_|encode_png|write_png|AtomicFile|RenderTarget)'; then
+      fail "$lib holds or needs a tool's symbols (above)"
+    fi
+    if readelf -d "$lib" 2>/dev/null | grep -E 'NEEDED.*libstb'; then
+      fail "$lib links stb"
+    fi
     "$prefix/bin/soundpaint" --help >/dev/null || fail "the installed soundpaint --help failed"
     find "$prefix" -type f | sed "s|^$prefix/||" | sort
     ;;

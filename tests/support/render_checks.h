@@ -14,8 +14,8 @@
 #include <optional>
 #include <string>
 
-#include "draw/png_writer.h"
-#include "draw/render_target.h"
+#include "render/png_writer.h"
+#include "render/render_target.h"
 
 namespace sp::test {
 

@@ -1,4 +1,4 @@
-#include "draw/scene_pass.h"
+#include "render/scene_pass.h"
 
 #include <glm/geometric.hpp>
 

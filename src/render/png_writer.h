@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "draw/render_target.h"
+#include "render/render_target.h"
 
 namespace sp::draw {
 

@@ -11,11 +11,11 @@
 
 #include <glm/glm.hpp>
 
-#include "draw/host_indicators.h"
+#include "render/host_indicators.h"
 #include "draw/indicator_pass.h"
-#include "draw/render_target.h"
-#include "draw/scene_pass.h"
-#include "draw/view_camera.h"
+#include "render/render_target.h"
+#include "render/scene_pass.h"
+#include "render/view_camera.h"
 #include "soundpaint/simulation.h"
 #include "vk/context.h"
 #include "vk/handle.h"

@@ -1,5 +1,5 @@
 #include "core/glm_interop.h"
-#include "draw/view_camera.h"
+#include "render/view_camera.h"
 
 #include <cmath>
 #include <glm/geometric.hpp>

@@ -1,4 +1,4 @@
-#include "draw/renderer.h"
+#include "render/renderer.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "draw/render_target.h"
+#include "render/render_target.h"
 
 #include <cstring>
 #include <string>

@@ -10,8 +10,8 @@
 
 #include "draw/graphics_pipeline.h"
 #include "sp_draw_types.h"
-#include "draw/scene_mesh.h"
-#include "draw/view_camera.h"
+#include "render/scene_mesh.h"
+#include "render/view_camera.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 #include "vk/context.h"

@@ -1,4 +1,4 @@
-#include "draw/host_indicators.h"
+#include "render/host_indicators.h"
 
 #include <algorithm>
 #include <cstring>

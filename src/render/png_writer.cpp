@@ -1,4 +1,4 @@
-#include "draw/png_writer.h"
+#include "render/png_writer.h"
 
 #include <stb_image_write.h>
 

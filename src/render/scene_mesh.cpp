@@ -1,4 +1,4 @@
-#include "draw/scene_mesh.h"
+#include "render/scene_mesh.h"
 
 #include <array>
 #include <string>
