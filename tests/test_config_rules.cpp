@@ -18,10 +18,10 @@ namespace sp {
 namespace {
 
 struct BadValue {
-  std::string key;                      // the key path both errors must name
-  std::string json;                     // a config file's text with the value
-  std::function<void(Config&)> set;     // the same value set in code
-  std::string words;                    // what both say is expected
+  std::string key;                   // the key path both errors must name
+  std::string json;                  // a config file's text with the value
+  std::function<void(Config&)> set;  // the same value set in code
+  std::string words;                 // what both say is expected
 };
 
 std::vector<BadValue> bad_values() {
@@ -30,8 +30,7 @@ std::vector<BadValue> bad_values() {
        "must be a number > 0, got 0"},
       {"diffraction.edge_angle", R"({"diffraction": {"edge_angle": 200}})",
        [](Config& c) { c.diffraction.edge_angle = 200; }, "in (0, 180]"},
-      {"diffraction.reach", R"({"diffraction": {"reach": -1}})", [](Config& c) { c.diffraction.reach = -1.0f; },
-       "> 0"},
+      {"diffraction.reach", R"({"diffraction": {"reach": -1}})", [](Config& c) { c.diffraction.reach = -1.0f; }, "> 0"},
       {"diffraction.gain", R"({"diffraction": {"gain": 1.5}})", [](Config& c) { c.diffraction.gain = 1.5f; },
        "in [0, 1]"},
       {"layers.glass.sheet_thickness", R"({"layers": {"glass": {"sheet_thickness": -0.01}}})",

@@ -180,12 +180,12 @@ TEST(Random, DecisionsAreUniformAndKeyedByAllInputs) {
   EXPECT_NE(base, shader::sp_decision_random(1u, 2u, 3u, 5u));
 }
 
-TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
+TEST(CpuRing, KeepsTheNewestAndDropsExpired) {
   Config config;
   config.max_indicators = 4;
   config.dt = 1.0;
   config.indicator_lifetime = 10.0f;
-  IndicatorRing ring(config);
+  CpuRing ring(config);
   std::vector<shader::Indicator> batch(6);
   for (std::uint32_t k = 0; k < 6; ++k) {
     batch[k].step = k;
@@ -204,7 +204,7 @@ TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
   EXPECT_TRUE(ring.live(0, config).empty());  // before the first step
   config.max_indicators = 2;
   config.indicator_lifetime = 100.0f;
-  IndicatorRing small(config);
+  CpuRing small(config);
   small.place(batch);  // more than capacity at once
   auto kept = small.live(6, config);
   ASSERT_EQ(kept.size(), 2u);
@@ -213,7 +213,7 @@ TEST(IndicatorRing, KeepsTheNewestAndDropsExpired) {
 
 // The one writer lays each step after the last, in runs of slots that
 // never wrap: what the CPU visualizer uploads and the simulator copies.
-TEST(IndicatorRing, WriterLaysRunsThatWrapAtTheCapacity) {
+TEST(CpuRing, WriterLaysRunsThatWrapAtTheCapacity) {
   Config config;
   config.max_indicators = 5;
   RingWriter writer(config);

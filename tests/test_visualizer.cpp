@@ -40,14 +40,7 @@ World mirror_room() {
   return make_world(scene, config).value();
 }
 
-HostVulkan host_of(const vk::Context& context) {
-  HostVulkan host;
-  host.instance = context.instance();
-  host.physical_device = context.physical_device();
-  host.device = context.device();
-  host.queue_family = context.queue_family();
-  return host;
-}
+HostVulkan host_of(const vk::Context& context) { return test::host_vulkan_of(context); }
 
 DrawTarget target_formats() {
   DrawTarget target;

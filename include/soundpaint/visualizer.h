@@ -5,6 +5,7 @@
 // synchronization contract in full.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -120,6 +121,55 @@ struct StageTimings {
   double connect_ms = 0.0;   // the casts from spots to the listener (docs/model.md#cues-for-the-player)
 };
 
+// The indicator ring, for an engine that draws the spots itself
+// (docs/integrating.md#drawing-the-ring-yourself); record_draw is the
+// default painter and needs none of this.
+//
+// `buffer` holds `capacity` slots of sp::Indicator (simulation.h) in std430
+// layout, `stride` = 128 bytes apart from `offset`; a slot's fields sit at
+// the offsets of sp::Indicator's members (position 0, energy 12, normal 16,
+// size 28, color 32, intensity 44, dir 48, path_length 60, kind 64,
+// source_id 68, bounces 72, penetrations 76, diffractions 80, step 84,
+// ray_index 88, iteration 92, arrival 96, heard_energy 108, emit_cell 112,
+// source_slot 116, toward 120). Its usage includes STORAGE_BUFFER,
+// VERTEX_BUFFER (per-instance attributes) and TRANSFER_SRC.
+//
+// `draw_args` at `draw_args_offset` is a VkDrawIndirectCommand: 4 vertices
+// (a quad as a triangle strip) and one instance per filled slot, first
+// vertex and first instance 0; usage INDIRECT_BUFFER, STORAGE_BUFFER, TRANSFER_SRC.
+// Slots 0 .. instanceCount-1 hold indicators, in no order that matters.
+//
+// A filled slot is shown while it is live: its age
+// (current_step - slot.step) * dt, 0 when slot.step > current_step, is
+// below `lifetime` (sp_indicator_live in docs/model.md); its opacity then
+// fades as intensity * (1 - age / lifetime). The display's other choices
+// (hidden categories, caps per category, minimum opacity) are record_draw's.
+//
+// The buffers and the numbers are those of the last record_simulation:
+// read them after it in the same frame. Its writes are visible to the
+// vertex shader and draw-indirect stages of later commands on the queue
+// that ran it (graphics queue); a host reading them in other stages, or on
+// another queue, adds its own barrier or semaphore (source: compute shader
+// and all transfer stages, storage and transfer writes). The next
+// record_simulation waits for vertex-shader and indirect reads of earlier
+// frames only. The buffers live as long as the visualizer.
+static_assert(sizeof(Indicator) == 128 && offsetof(Indicator, energy) == 12 && offsetof(Indicator, color) == 32 &&
+                  offsetof(Indicator, kind) == 64 && offsetof(Indicator, step) == 84 &&
+                  offsetof(Indicator, arrival) == 96 && offsetof(Indicator, toward) == 120,
+              "the ring's layout is a contract (IndicatorRing)");
+struct IndicatorRing {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceSize offset = 0;
+  VkDeviceSize size = 0;  // capacity * stride bytes
+  std::uint32_t capacity = 0;
+  std::uint32_t stride = 0;  // sizeof(Indicator): 128
+  VkBuffer draw_args = VK_NULL_HANDLE;
+  VkDeviceSize draw_args_offset = 0;
+  std::uint32_t current_step = 0;  // the newest step whose indicators the ring holds
+  float dt = 0.0f;                 // seconds per step (config.dt)
+  float lifetime = 0.0f;           // the display's lifetime in seconds: indicator_lifetime, at least 1/3 s
+};
+
 class Visualizer {
  public:
   // Errors: InvalidArgument (null handles, bad formats or settings), Vulkan
@@ -168,6 +218,11 @@ class Visualizer {
   // Off-screen arrows are drawn when the display settings ask for them.
   virtual Result<bool> record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                    const DrawOptions& options) = 0;
+
+  // The indicator ring and how to read it (IndicatorRing above), for an
+  // engine that draws the spots itself. Errors: InvalidArgument before the
+  // first record_simulation (the ring is initialised by it).
+  virtual Result<IndicatorRing> indicator_ring() = 0;
 
   // How the indicators are drawn (docs/model.md#the-display; initially the
   // world's config.display). Checked (InvalidConfig naming the key); applies

@@ -26,10 +26,12 @@ class CpuVisualizer final : public VisualizerBase {
         writer_(scene_.world().config),
         layer_table_(make_layer_table(scene_.world())),
         ring_(*context_, VkDeviceSize{writer_.capacity()} * sizeof(Indicator),
-              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::DeviceLocal,
-              "cpu indicator ring"),
+              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,  // usage: visualizer.h
+              vk::MemoryUsage::DeviceLocal, "cpu indicator ring"),
         draw_args_(*context_, sizeof(VkDrawIndirectCommand),
-                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,  // the display prepass reads the instance count
                    vk::MemoryUsage::DeviceLocal, "cpu indicator draw args"),
         embree_(make_cpu_traversal(scene_.world().config, scene_.world().geometry->bvh, settings.cpu.threads)),

@@ -107,6 +107,24 @@ Result<bool> VisualizerBase::set_scene_depth(std::span<const VkImageView> views)
   });
 }
 
+Result<IndicatorRing> VisualizerBase::indicator_ring() {
+  if (!ready_to_draw()) return invalid("indicator_ring: record_simulation must be recorded before the ring is read");
+  const gpu::IndicatorView view = indicator_view();
+  const World& world = scene_.world();
+  const draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);
+  IndicatorRing ring;
+  ring.buffer = view.ring;
+  ring.capacity = view.ring_capacity;
+  ring.stride = sizeof(Indicator);
+  ring.size = VkDeviceSize{ring.capacity} * ring.stride;
+  ring.draw_args = view.draw_args;
+  ring.draw_args_offset = view.draw_args_offset;
+  ring.current_step = frame.current_step;
+  ring.dt = frame.dt;
+  ring.lifetime = frame.lifetime;
+  return ring;
+}
+
 void VisualizerBase::record_display(VkCommandBuffer cmd) {
   if (!pass_bound_) {
     pass_.bind(indicator_view());  // the ring never moves: bound once

@@ -30,6 +30,7 @@ class VisualizerBase : public Visualizer {
   Result<bool> set_display(const DisplaySettings& settings) override;
   const DisplaySettings& display() const override { return scene_.world().config.display; }
   Result<bool> set_scene_depth(std::span<const VkImageView> views) override;
+  Result<IndicatorRing> indicator_ring() override;
 
  protected:
   // The ring to draw and whether it has been initialised by a recorded

@@ -42,19 +42,19 @@ std::uint32_t RingWriter::live_slots(std::uint32_t now) const {
   return live;
 }
 
-void IndicatorRing::write(const CpuStepOutput& step, std::uint32_t now) {
+void CpuRing::write(const CpuStepOutput& step, std::uint32_t now) {
   writer_.write(step, now, [this](std::uint32_t slot, std::span<const shader::Indicator> run) { store(slot, run); });
 }
 
-void IndicatorRing::place(std::span<const shader::Indicator> indicators) {
+void CpuRing::place(std::span<const shader::Indicator> indicators) {
   writer_.place(indicators, [this](std::uint32_t slot, std::span<const shader::Indicator> run) { store(slot, run); });
 }
 
-void IndicatorRing::store(std::uint32_t slot, std::span<const shader::Indicator> run) {
+void CpuRing::store(std::uint32_t slot, std::span<const shader::Indicator> run) {
   std::copy(run.begin(), run.end(), slots_.begin() + slot);
 }
 
-std::vector<shader::Indicator> IndicatorRing::live(std::uint64_t steps_run, const Config& config) const {
+std::vector<shader::Indicator> CpuRing::live(std::uint64_t steps_run, const Config& config) const {
   const std::uint64_t capacity = slots_.size();
   const std::uint64_t written = writer_.written();
   std::vector<shader::Indicator> result;

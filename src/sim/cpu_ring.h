@@ -1,5 +1,5 @@
 // The CPU backend's indicator ring and its one writer. The CPU simulator
-// keeps the ring on the host (IndicatorRing); the CPU visualizer keeps it
+// keeps the ring on the host (CpuRing); the CPU visualizer keeps it
 // on its device and uploads what the writer lays (RingWriter). Both admit
 // and place a step's indicators through RingWriter alone, as the GPU
 // backend does in admit.comp; which slots are live, sp_indicator_live
@@ -89,9 +89,9 @@ class RingWriter {
 };
 
 // The ring on the host, for the CPU simulator.
-class IndicatorRing {
+class CpuRing {
  public:
-  explicit IndicatorRing(const Config& config) : writer_(config), slots_(writer_.capacity()) {}
+  explicit CpuRing(const Config& config) : writer_(config), slots_(writer_.capacity()) {}
 
   // Admits and lays a step's indicators, those of step `now`
   // (RingWriter::write).

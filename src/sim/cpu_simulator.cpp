@@ -93,7 +93,7 @@ class CpuSimulator final : public Simulator {
 
   SoundScene scene_;
   CpuStepRunner runner_;
-  IndicatorRing ring_;
+  CpuRing ring_;
   std::vector<shader::LayerAcoustics> layer_table_;
   std::unique_ptr<EmbreeTraversal> embree_;  // null: soundpaint's own traversal
   StepPlan plan_;

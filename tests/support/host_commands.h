@@ -7,10 +7,21 @@
 
 #include <gtest/gtest.h>
 
+#include "soundpaint/visualizer.h"
 #include "vk/context.h"
 #include "vk/handle.h"
 
 namespace sp::test {
+
+// The shared context's handles, lent as a host lends its own.
+inline HostVulkan host_vulkan_of(const vk::Context& context) {
+  HostVulkan host;
+  host.instance = context.instance();
+  host.physical_device = context.physical_device();
+  host.device = context.device();
+  host.queue_family = context.queue_family();
+  return host;
+}
 
 class HostCommands {
  public:
