@@ -146,6 +146,10 @@ TEST(Cli, InfoDescribesTheScene) {
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* needle : {"triangles:", "layers:", "wood", "sources:", "listener:", "bvh:", "nodes"})
     EXPECT_NE(r.out.find(needle), std::string::npos) << needle << "\n" << r.out;
+  // The floor's top is y = 0 (scenes/generate_scenes.py): the listener
+  // stands at y 1.6, the stereo at 1.2.
+  for (const char* needle : {"listener   1.600 m above concrete", "source 0   1.200 m above concrete"})
+    EXPECT_NE(r.out.find(needle), std::string::npos) << needle << "\n" << r.out;
 }
 
 TEST(Cli, HelpForEveryCommand) {

@@ -13,6 +13,7 @@
 #include "core/printable_text.h"
 #include "sim/step_plan.h"
 #include "sim/world_geometry.h"
+#include "soundpaint/ray_query.h"
 #include "soundpaint/simulation.h"
 #include "sp_types.h"
 
@@ -24,12 +25,23 @@ constexpr const char* kHelp =
     "                             [--memory-budget SIZE]\n"
     "\n"
     "Prints the scene's triangles, layers (with triangle counts and the acoustic\n"
-    "properties they resolve to), sources, listener, and BVH node count, depth and\n"
+    "properties they resolve to), sources, listener, the floor under each (a ray\n"
+    "cast straight down), and BVH node count, depth and\n"
     "build time, and the exposed edges sound may bend round (diffraction) with the\n"
     "time it takes to find them. --config applies a configuration's layers, sources,\n"
     "listener and diffraction edge angle.\n";
 
 void print_vec(glm::vec3 v) { std::printf("(%.3f, %.3f, %.3f)", double(v.x), double(v.y), double(v.z)); }
+
+// What is straight below `position` (the public ray query): a source or
+// listener with no floor under it is likely outside the level.
+void print_floor(const World& world, const char* what, glm::vec3 position) {
+  const std::optional<RayHit> hit = cast_ray(world, position, Vec3(0.0f, -1.0f, 0.0f)).value();
+  if (hit)
+    std::printf("  %-10s %.3f m above %s\n", what, double(hit->distance),
+                printable_text(world.layer_names[hit->layer]).c_str());
+  else std::printf("  %-10s nothing below: outside the level?\n", what);
+}
 
 }  // namespace
 
@@ -79,6 +91,10 @@ int run_info(const std::vector<std::string>& args) {
   std::printf("listener: ");
   print_vec(world.listener);
   std::printf(" (%s)\n", listener_from);
+  std::printf("floors (a ray cast straight down):\n");
+  print_floor(world, "listener", world.listener);
+  for (std::size_t id = 0; id < world.sources.size(); ++id)
+    print_floor(world, ("source " + std::to_string(id)).c_str(), world.sources[id].position);
   const Bvh& bvh = world.geometry->bvh;
   const double sah = bvh_sah_cost(bvh);
   std::printf("bvh: %zu nodes, depth %u, built in %.3f ms, SAH cost %.0f (tests a ray through the level expects)\n",

@@ -1,5 +1,4 @@
 #include "core/glm_interop.h"
-#include "sim/world_geometry.h"
 #include "view/viewer.h"
 
 #include <GLFW/glfw3.h>
@@ -21,7 +20,7 @@
 #include "draw/image_barrier.h"
 #include "draw/rendering.h"
 #include "render/scene_pass.h"
-#include "bvh/bvh.h"
+#include "soundpaint/ray_query.h"
 #include "soundpaint/config.h"
 #include "soundpaint/display.h"
 #include "soundpaint/visualizer.h"
@@ -311,9 +310,9 @@ void Viewer::place_or_play(bool play) {
   const VkExtent2D extent = swapchain_->extent();
   const glm::vec3 dir = camera_.ray_through(window_.cursor(), extent.width, extent.height);
   const World& world = painting_.visualizer->scene().world();
-  const HitInfo hit = closest_hit(world.geometry->bvh, camera_.eye, dir, 0.0f, 1000.0f);
-  if (hit.triangle == SP_INVALID) return;
-  const glm::vec3 point = camera_.eye + dir * hit.t;
+  const std::optional<RayHit> hit = cast_ray(world, camera_.eye, dir, 1000.0f).value();
+  if (!hit) return;
+  const glm::vec3 point = to_glm(hit->position);
   SoundScene& scene = painting_.visualizer->scene();
   if (play) {
     std::optional<std::uint32_t> nearest;
