@@ -61,7 +61,7 @@ def main():
                 total = hit["rows"] + ex["rows"]
                 layers = s["layers"].values()
                 penetrations = sum(l["penetrations"] for l in layers)
-                misses = sum(l["backcast_misses"] for l in layers)
+                misses = sum(l.get("no_way_out", l.get("backcast_misses", 0)) for l in layers)
                 hits = sum(l["hits"] for l in layers)
                 back = sum(l.get("back_face_hits", 0) for l in layers)
                 print(f"| {level}-{mode} | {name} | {total} | "

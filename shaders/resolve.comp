@@ -1,10 +1,10 @@
 #version 460
 // Stage (c)/(d): resolves each queued ray's cast with the shared ray model --
-// air loss, indicators, reflect or penetrate, forward steps, backcast
-// thickness -- and queues the rays still alive for the next iteration. Its
-// last workgroup turns the queue's length into the next iteration's
-// indirect arguments, and the step's counts so far into the dispatches
-// after the wavefront (a one-thread prepare dispatch did both).
+// air loss, indicators, reflect or penetrate, where a penetrating ray leaves
+// matter -- and queues the rays still alive for the next iteration. Its
+// last subgroup to finish turns the queue's length into the next
+// iteration's indirect arguments, and the step's counts so far into the
+// dispatches after the wavefront (a one-thread prepare dispatch did both).
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_ray_model.h"
@@ -46,8 +46,8 @@ void main() {
       if ((outcome & SP_OUTCOME_BACK_FACE) != 0u) count_event(tri.layer, SP_COUNTER_BACK_FACE_HITS);
       if ((outcome & SP_OUTCOME_DIFFRACT) != 0u) count_event(tri.layer, SP_COUNTER_DIFFRACTIONS);
     } else {
-      outcome = sp_resolve_backcast(r, found, tri, source, step_input.params, indicator);
-      if ((outcome & SP_OUTCOME_BACKCAST_MISS) != 0u) count_event(r.entry_layer, SP_COUNTER_BACKCAST_MISSES);
+      outcome = sp_resolve_matter_exit(r, found, tri, source, step_input.params, indicator);
+      if ((outcome & SP_OUTCOME_NO_WAY_OUT) != 0u) count_event(r.entry_layer, SP_COUNTER_NO_WAY_OUT);
     }
     cut_short = (outcome & SP_OUTCOME_CUT_SHORT) != 0u;
     rays[ray_index] = r;

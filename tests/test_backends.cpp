@@ -90,8 +90,8 @@ TEST_P(BackendPhysics, SlabCostsAttenuationTimesThicknessOverCosine) {
   EXPECT_EQ(wood.reflections, 0u);
   EXPECT_EQ(wood.penetrations, wood.hits);
   // rays with cos(theta) < 0.4 enter but find no exit within W_max
-  EXPECT_GT(wood.backcast_misses, 0u);
-  EXPECT_EQ(wood.penetrations - wood.backcast_misses, static_cast<std::uint64_t>(exits));
+  EXPECT_GT(wood.no_way_out, 0u);
+  EXPECT_EQ(wood.penetrations - wood.no_way_out, static_cast<std::uint64_t>(exits));
 }
 
 TEST_P(BackendPhysics, SourceBeyondScanRadiusEmitsNothing) {

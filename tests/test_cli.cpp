@@ -52,8 +52,9 @@ TEST(Cli, SimulateWritesTheContractCsvAndStats) {
   EXPECT_TRUE(stats["timing"].contains("ms_per_step_p99"));
   std::uint64_t hits = 0;
   for (const auto& [name, layer] : stats["layers"].items()) {
-    for (const char* key : {"hits", "reflections", "penetrations", "backcast_misses"})
+    for (const char* key : {"hits", "reflections", "penetrations", "no_way_out", "backcast_misses"})
       EXPECT_TRUE(layer.contains(key)) << name << " " << key;
+    EXPECT_EQ(layer["backcast_misses"], layer["no_way_out"]) << "the deprecated name counts the same";
     hits += layer["hits"].get<std::uint64_t>();
   }
   EXPECT_GE(hits, stats["indicators"].get<std::uint64_t>() / 2);

@@ -80,7 +80,7 @@ class GpuParity : public test::GpuTest {
       EXPECT_NEAR(double(b.hits), double(a.hits), 0.001 * double(a.hits) + 1) << l;
       EXPECT_NEAR(double(b.reflections), double(a.reflections), 0.001 * double(a.reflections) + 1) << l;
       EXPECT_NEAR(double(b.penetrations), double(a.penetrations), 0.001 * double(a.penetrations) + 1) << l;
-      EXPECT_NEAR(double(b.backcast_misses), double(a.backcast_misses), 0.001 * double(a.backcast_misses) + 1) << l;
+      EXPECT_NEAR(double(b.no_way_out), double(a.no_way_out), 0.001 * double(a.no_way_out) + 1) << l;
       EXPECT_NEAR(double(b.back_face_hits), double(a.back_face_hits), 0.001 * double(a.back_face_hits) + 1) << l;
       EXPECT_NEAR(double(b.diffractions), double(a.diffractions), 0.001 * double(a.diffractions) + 1) << l;
     }

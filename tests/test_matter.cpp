@@ -124,7 +124,7 @@ TEST(Matter, TouchingSlabsThickerTogetherThanMaxWallThicknessAbsorb) {
   TraceCounters counters;
   auto ind = f.trace({0, 0, 0}, {1, 0, 0}, counters);
   ASSERT_EQ(ind.size(), 1u);
-  EXPECT_EQ(counters.layers[0].backcast_misses, 1u);
+  EXPECT_EQ(counters.layers[0].no_way_out, 1u);
 }
 
 TEST(Matter, OverlapLosesAtTheLargestAttenuationWhicheverWayRaysCross) {
@@ -175,7 +175,7 @@ TEST(Matter, TrimOnOpenRenderMeshFindsNoWayOut) {
   auto ind = f.trace({0, 2, 0}, {0, -1, 0}, counters);
   ASSERT_EQ(ind.size(), 1u);
   EXPECT_EQ(ind[0].kind, SP_INDICATOR_HIT);
-  EXPECT_EQ(counters.layers[1].backcast_misses, 1u);  // wood: the entry face's layer
+  EXPECT_EQ(counters.layers[1].no_way_out, 1u);  // wood: the entry face's layer
 }
 
 TEST(Matter, WallEnteredJustBelowTheCeilingOfARenderMeshRoomLetsNothingOut) {
@@ -199,7 +199,7 @@ TEST(Matter, WallEnteredJustBelowTheCeilingOfARenderMeshRoomLetsNothingOut) {
   EXPECT_NEAR(ind[0].position.x, -3.0f, 1e-6f);
   EXPECT_NEAR(ind[0].position.y, 3.0f - 0.00001f - 0.0004f * 0.754f / 0.586f, 2e-6f);
   EXPECT_EQ(counters.layers[0].penetrations, 1u);
-  EXPECT_EQ(counters.layers[0].backcast_misses, 1u);
+  EXPECT_EQ(counters.layers[0].no_way_out, 1u);
 }
 
 TEST(Matter, FloorWithASecondSlabOverlappingIt) {
@@ -255,7 +255,7 @@ TEST(Matter, SheetIsCrossedOnTheSpotFromEitherSide) {
       EXPECT_NEAR(ind[1].path_length, ind[0].path_length + 0.01f, 1e-6f);
       EXPECT_EQ(ind[1].penetrations, 1u);
       EXPECT_EQ(ind[0].iteration, ind[1].iteration);
-      EXPECT_EQ(counters.casts, 2u);  // no backcast: hit, then on into the void
+      EXPECT_EQ(counters.casts, 2u);  // no matter query: hit, then on into the void
       EXPECT_EQ(counters.layers[0].back_face_hits, 0u);
     }
   }
@@ -445,8 +445,8 @@ TEST_P(MatterBackends, EveryIndicatorFacesAirAndExitsLoseWhatTheMatterCosts) {
   // into the floor, find no way out (the old backcast took the floor's top
   // under the trim for one, facing into the trim: the check above).
   if (std::string(kScenarios[std::get<1>(GetParam())].name) == "render_mesh_trim") {
-    EXPECT_GT(out.stats.layers[0].backcast_misses, 100u);
-    EXPECT_GT(out.stats.layers[1].backcast_misses, 20u);
+    EXPECT_GT(out.stats.layers[0].no_way_out, 100u);
+    EXPECT_GT(out.stats.layers[1].no_way_out, 20u);
   }
 }
 

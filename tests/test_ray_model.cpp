@@ -50,7 +50,7 @@ TEST(RayModel, SlabAtNormalIncidenceCostsAttenuationTimesThickness) {
   EXPECT_FLOAT_EQ(indicators[1].normal.x, 1.0f);
   EXPECT_EQ(counters.layers[0].hits, 1u);
   EXPECT_EQ(counters.layers[0].penetrations, 1u);
-  EXPECT_EQ(counters.casts, 3u);  // forward, backcast, forward into the void
+  EXPECT_EQ(counters.casts, 3u);  // closest hit, matter query, closest hit into the void
 }
 
 TEST(RayModel, SlabAtObliqueIncidenceCostsThicknessOverCosine) {
@@ -76,7 +76,7 @@ TEST(RayModel, SlabThickerThanMaxWallThicknessAbsorbs) {
   ASSERT_EQ(indicators.size(), 1u);  // the entry hit only; no exit
   EXPECT_EQ(indicators[0].kind, SP_INDICATOR_HIT);
   EXPECT_EQ(counters.layers[0].penetrations, 1u);
-  EXPECT_EQ(counters.layers[0].backcast_misses, 1u);
+  EXPECT_EQ(counters.layers[0].no_way_out, 1u);
   EXPECT_EQ(counters.casts, 2u);
 }
 

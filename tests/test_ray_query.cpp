@@ -38,8 +38,8 @@ TEST(RayQuery, FindsTheNearestSurfaceWithItsNormalFacingTheOrigin) {
     const std::optional<RayHit> hit = cast_ray(world, origin, c.direction).value();
     ASSERT_TRUE(hit.has_value());
     EXPECT_NEAR(hit->distance, c.distance, 1e-5f);
-    const float length = std::sqrt(c.direction.x * c.direction.x + c.direction.y * c.direction.y +
-                                   c.direction.z * c.direction.z);
+    const float length =
+        std::sqrt(c.direction.x * c.direction.x + c.direction.y * c.direction.y + c.direction.z * c.direction.z);
     EXPECT_NEAR(hit->position.x, origin.x + c.direction.x / length * c.distance, 1e-5f);
     EXPECT_NEAR(hit->position.y, origin.y + c.direction.y / length * c.distance, 1e-5f);
     EXPECT_NEAR(hit->position.z, origin.z + c.direction.z / length * c.distance, 1e-5f);

@@ -57,8 +57,8 @@ TEST(Simulation, ReflectionFractionMatchesReflectProbability) {
   EXPECT_NEAR(fraction, 0.3, 4 * sigma);
   // Slabs meet at the room's edges, so a ray entering near an edge can find
   // the neighbouring slab's face within W_max: most, not all, are absorbed.
-  EXPECT_LE(layer.backcast_misses, layer.penetrations);
-  EXPECT_GT(layer.backcast_misses, layer.penetrations * 9 / 10);
+  EXPECT_LE(layer.no_way_out, layer.penetrations);
+  EXPECT_GT(layer.no_way_out, layer.penetrations * 9 / 10);
 }
 
 TEST(Simulation, SourceBeyondItsMaxDistanceFromListenerEmitsNothing) {

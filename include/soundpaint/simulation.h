@@ -160,8 +160,10 @@ Result<World> make_world(const Scene& scene, const Config& config, WorldGeometry
 struct LayerCounters {
   std::uint64_t hits = 0;  // every surface hit on this layer
   std::uint64_t reflections = 0;
-  std::uint64_t penetrations = 0;     // every decision to penetrate (backcast misses included)
-  std::uint64_t backcast_misses = 0;  // penetrations that found no way out of matter within W_max
+  std::uint64_t penetrations = 0;  // every decision to penetrate (no_way_out included)
+  // Penetrations that found no way out of matter within W_max (the ray is
+  // absorbed); `check`'s no_way_out. Was backcast_misses before 0.2.
+  std::uint64_t no_way_out = 0;
   // Rays in air that struck the back of a face: a leak or winding that
   // disagrees with the geometry (docs/model.md#the-back-of-a-face-struck-from-air).
   // Counted in hits too.
@@ -174,7 +176,7 @@ struct LayerCounters {
 // Totals over every step run so far.
 struct SimulationStats {
   std::uint64_t steps = 0;
-  std::uint64_t casts = 0;  // forward casts + backcasts
+  std::uint64_t casts = 0;  // closest-hit casts + matter queries
   std::uint64_t max_casts_per_step = 0;
   std::uint64_t rays_emitted = 0;
   std::uint64_t indicators = 0;  // every indicator created

@@ -140,7 +140,7 @@ typedef struct sp_indicator {
 /* Totals over every step run so far. */
 typedef struct sp_stats {
   uint64_t steps;        /* steps run */
-  uint64_t casts;        /* ray casts (forward casts + backcasts) */
+  uint64_t casts;        /* ray casts (closest-hit casts + matter queries) */
   uint64_t rays_emitted; /* rays emitted by sources */
   uint64_t indicators;   /* indicators created (including ones no longer live) */
 } sp_stats;

@@ -156,7 +156,7 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
     r.dir = mirrored / len;
     r.origin = sp_offset_point(position, normal, SP_EPSILON);
   } else if (sheet) {
-    // A sheet is crossed on the spot: its thickness lost, no backcast, and
+    // A sheet is crossed on the spot: its thickness lost, no matter query, and
     // no air loss across it.
     outcome |= SP_OUTCOME_PENETRATE;
     SP_PRECISE float crossed_energy = r.energy - layer.sheet_thickness * layer.attenuation;
@@ -176,7 +176,8 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
     r.entry = position;
     r.entry_layer = tri.layer;
     r.entry_triangle = found.triangle;
-    r.origin = sp_offset_point(position, r.dir, p.max_wall_thickness);  // the paper's forward step
+    // No forward step (the paper's p_in + W_max d): the matter query starts
+    // at r.entry, and the exit sets r.origin (sp_resolve_matter_exit).
     r.state = SP_RAY_RESOLVING;
   }
   return outcome;
@@ -184,12 +185,12 @@ SP_INLINE uint sp_resolve_active(SP_INOUT(RayState) r, CastResult found, BvhTria
 
 // Resolves a ResolvingPenetration ray's matter query (sp_find_exit); `tri`
 // is the exit face when found.triangle is valid.
-SP_INLINE uint sp_resolve_backcast(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, StepSource source,
-                                   SimParams p, SP_OUT(Indicator) ind) {
+SP_INLINE uint sp_resolve_matter_exit(SP_INOUT(RayState) r, CastResult found, BvhTriangle tri, StepSource source,
+                                      SimParams p, SP_OUT(Indicator) ind) {
   r.casts += 1u;
   if (found.triangle == SP_INVALID) {  // no way out within W_max: absorbed
     r.state = SP_RAY_DEAD;
-    return SP_OUTCOME_BACKCAST_MISS | ((found.flags & SP_CAST_CUT_SHORT) != 0u ? SP_OUTCOME_CUT_SHORT : 0u);
+    return SP_OUTCOME_NO_WAY_OUT | ((found.flags & SP_CAST_CUT_SHORT) != 0u ? SP_OUTCOME_CUT_SHORT : 0u);
   }
   SP_PRECISE float energy = r.energy - found.matter_loss;
   SP_PRECISE float travelled = r.travelled + found.t;

@@ -11,8 +11,8 @@
 #define SP_BVH_MAX_DEPTH 32
 // Compute workgroup width: a multiple of every common subgroup size (32/64).
 #define SP_WORKGROUP_SIZE 64
-// Surface offset (metres) applied after reflections and exits, and the near
-// limit of the backcast, so a ray never re-hits the face it just left.
+// Surface offset (metres) applied after reflections and exits, so a ray
+// never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f
 // Faces closer than this along a ray (metres) are crossed together: where two
 // solids touch, the leaving face of one and the entering face of the next
@@ -24,8 +24,8 @@
 // Faces one matter query lists (the nearest ones within W_max of p_in; the
 // two triangles of one surface met through their shared edge count once).
 // Touching and overlapping solids put a handful of faces within W_max; a
-// query that finds more and no way out among the listed ones counts as a
-// backcast miss, which bounds the work per penetration. Kept small because
+// query that finds more and no way out among the listed ones counts as no
+// way out (the ray is absorbed), which bounds the work per penetration. Kept small because
 // a GPU holds the list per thread.
 #define SP_MATTER_MAX_HITS 8
 // Solids whose layers a penetrating ray remembers at once (overlapping
@@ -73,7 +73,7 @@
 #define SP_OUTCOME_INDICATOR 2u
 #define SP_OUTCOME_REFLECT 4u
 #define SP_OUTCOME_PENETRATE 8u
-#define SP_OUTCOME_BACKCAST_MISS 16u
+#define SP_OUTCOME_NO_WAY_OUT 16u
 // An Active ray struck the back of a face: it was inside matter (a leak, or
 // winding that disagrees with the geometry) and is absorbed.
 #define SP_OUTCOME_BACK_FACE 32u

@@ -117,9 +117,9 @@ PenetrationProbe probe_penetration_on(const Scene& scene, const Config& config, 
     result.back_face_hits += c.back_face_hits;
     if (sheet[l]) continue;  // sheets are crossed on the spot, never searched
     result.layer_penetrations[l] = c.penetrations;
-    result.layer_no_way_out[l] = c.backcast_misses;
+    result.layer_no_way_out[l] = c.no_way_out;
     result.penetrations += c.penetrations;
-    result.no_way_out += c.backcast_misses;
+    result.no_way_out += c.no_way_out;
   }
   return result;
 }

@@ -66,8 +66,8 @@ class StagingPlan {
 GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources) {
   const Config& config = world.config;
   max_rays = std::max<std::uint32_t>(1, config.ray_budget);
-  // A ray casts at most twice per interaction (forward + backcast) plus a
-  // final forward cast, and leaves at most one indicator per cast.
+  // A ray casts at most twice per interaction (a closest-hit cast and, when
+  // it penetrates, a matter query) plus a final closest-hit cast, and leaves at most one indicator per cast.
   iterations = 2 * config.max_bounces + 1;
   capture_capacity = max_rays * iterations;
   ring_capacity = config.max_indicators;

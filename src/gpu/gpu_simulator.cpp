@@ -127,7 +127,7 @@ class GpuSimulator final : public Simulator {
               return join64(counters[k], counters[k + 1]);
             };
             stats.layers.push_back({total(SP_COUNTER_HITS), total(SP_COUNTER_REFLECTIONS),
-                                    total(SP_COUNTER_PENETRATIONS), total(SP_COUNTER_BACKCAST_MISSES),
+                                    total(SP_COUNTER_PENETRATIONS), total(SP_COUNTER_NO_WAY_OUT),
                                     total(SP_COUNTER_BACK_FACE_HITS), total(SP_COUNTER_DIFFRACTIONS)});
           }
           return stats;

@@ -46,7 +46,10 @@ std::string stats_json(const World& world, const SimulationStats& stats, const c
     layers[world.layer_names[l]] = {{"hits", c.hits},
                                     {"reflections", c.reflections},
                                     {"penetrations", c.penetrations},
-                                    {"backcast_misses", c.backcast_misses},
+                                    {"no_way_out", c.no_way_out},
+                                    // The same count under the paper's name: SPEC's
+                                    // contract, deprecated (CHANGELOG.md 0.2.0).
+                                    {"backcast_misses", c.no_way_out},
                                     {"back_face_hits", c.back_face_hits},
                                     {"diffractions", c.diffractions}};
   }

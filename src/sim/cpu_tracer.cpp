@@ -56,8 +56,8 @@ void trace_ray(const TraceContext& context, shader::RayState ray, DefaultInitVec
       layer.diffractions += (outcome & SP_OUTCOME_DIFFRACT) != 0;
     } else {
       const uint entry_layer = ray.entry_layer;
-      outcome = sp_resolve_backcast(ray, found, triangle, source, p, indicator);
-      counters.layers[entry_layer].backcast_misses += (outcome & SP_OUTCOME_BACKCAST_MISS) != 0;
+      outcome = sp_resolve_matter_exit(ray, found, triangle, source, p, indicator);
+      counters.layers[entry_layer].no_way_out += (outcome & SP_OUTCOME_NO_WAY_OUT) != 0;
     }
     counters.cut_short += (outcome & SP_OUTCOME_CUT_SHORT) != 0u;
     const bool made_indicator = (outcome & SP_OUTCOME_INDICATOR) != 0u;

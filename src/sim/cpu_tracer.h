@@ -20,7 +20,7 @@ inline void accumulate(LayerCounters& into, const LayerCounters& more) {
   into.hits += more.hits;
   into.reflections += more.reflections;
   into.penetrations += more.penetrations;
-  into.backcast_misses += more.backcast_misses;
+  into.no_way_out += more.no_way_out;
   into.back_face_hits += more.back_face_hits;
   into.diffractions += more.diffractions;
 }

@@ -21,8 +21,7 @@ Result<std::optional<RayHit>> cast_ray(const World& world, const Vec3& origin, c
   const float length = glm::length(way);
   if (!(length > 0.0f) || !std::isfinite(length))
     return Error{ErrorCode::InvalidArgument, "cast_ray: the direction must not be zero", 0};
-  if (!(max_distance > 0.0f))
-    return Error{ErrorCode::InvalidArgument, "cast_ray: max_distance must be > 0", 0};
+  if (!(max_distance > 0.0f)) return Error{ErrorCode::InvalidArgument, "cast_ray: max_distance must be > 0", 0};
   if (world.geometry->bvh.nodes.empty()) return std::optional<RayHit>{};
   const glm::vec3 unit = way / length;
   const Bvh& bvh = world.geometry->bvh;
