@@ -102,8 +102,8 @@ int main(int argc, char** argv) {
       auto report = adapter.update();
       const auto end = std::chrono::steady_clock::now();
       if (!report.ok() || report.value().playing != static_cast<std::uint32_t>(n)) {
-        std::fprintf(stderr, "bench_openal: update saw %u of %d playing: %s\n", report.ok() ? report.value().playing : 0,
-                     n, report.ok() ? "" : report.error().message.c_str());
+        std::fprintf(stderr, "bench_openal: update saw %u of %d playing: %s\n",
+                     report.ok() ? report.value().playing : 0, n, report.ok() ? "" : report.error().message.c_str());
         return 1;
       }
       if (!sim->step().ok()) return 1;

@@ -208,8 +208,8 @@ TEST_P(OpenAlAdapter, MisuseGetsAnErrorNamingIt) {
       << unknown.error().message;
   alSourceStop(source_);
   // Ignored by the rules: never painted, no error.
-  ASSERT_TRUE(adapter_->note_buffer_data(buffers_[1], AL_FORMAT_MONO16, pcm.data(), 2000, 22050, "sound/misc/menu1.wav")
-                  .ok());
+  ASSERT_TRUE(
+      adapter_->note_buffer_data(buffers_[1], AL_FORMAT_MONO16, pcm.data(), 2000, 22050, "sound/misc/menu1.wav").ok());
   alSourcePlay(source_);
   EXPECT_TRUE(frame().empty());
   EXPECT_FALSE(adapter_->source_id(source_).has_value());
@@ -221,8 +221,7 @@ TEST_P(OpenAlAdapter, MisuseGetsAnErrorNamingIt) {
   EXPECT_NE(none.error().message.find("no current AL context"), std::string::npos);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, OpenAlAdapter, ::testing::ValuesIn(test::backend_cases()),
-                         test::backend_case_name);
+INSTANTIATE_TEST_SUITE_P(Backends, OpenAlAdapter, ::testing::ValuesIn(test::backend_cases()), test::backend_case_name);
 
 }  // namespace
 }  // namespace sp

@@ -27,12 +27,24 @@ std::string hex(ALenum value) {
 Result<Signal> buffer_signal(ALenum format, const ALvoid* data, ALsizei size, ALsizei frequency) {
   unsigned channels = 0, bytes = 0;
   switch (format) {
-    case AL_FORMAT_MONO8: channels = 1, bytes = 1; break;
-    case AL_FORMAT_STEREO8: channels = 2, bytes = 1; break;
-    case AL_FORMAT_MONO16: channels = 1, bytes = 2; break;
-    case AL_FORMAT_STEREO16: channels = 2, bytes = 2; break;
-    case kMonoFloat32: channels = 1, bytes = 4; break;
-    case kStereoFloat32: channels = 2, bytes = 4; break;
+    case AL_FORMAT_MONO8:
+      channels = 1, bytes = 1;
+      break;
+    case AL_FORMAT_STEREO8:
+      channels = 2, bytes = 1;
+      break;
+    case AL_FORMAT_MONO16:
+      channels = 1, bytes = 2;
+      break;
+    case AL_FORMAT_STEREO16:
+      channels = 2, bytes = 2;
+      break;
+    case kMonoFloat32:
+      channels = 1, bytes = 4;
+      break;
+    case kStereoFloat32:
+      channels = 2, bytes = 4;
+      break;
     default:
       return invalid("format " + hex(format) +
                      " is not one soundpaint reads (AL_FORMAT_MONO8/16, STEREO8/16, MONO/STEREO_FLOAT32)");

@@ -56,8 +56,8 @@ Result<bool> Adapter::buffer_data(ALuint buffer, ALenum format, const ALvoid* da
   alGetError();  // clear an earlier error, so the one read below is alBufferData's
   alBufferData(buffer, format, data, size, frequency);
   if (const ALenum error = alGetError(); error != AL_NO_ERROR)
-    return invalid("openal: alBufferData(buffer " + std::to_string(buffer) + ") failed: " +
-                   (alGetString(error) != nullptr ? alGetString(error) : "unknown AL error"));
+    return invalid("openal: alBufferData(buffer " + std::to_string(buffer) +
+                   ") failed: " + (alGetString(error) != nullptr ? alGetString(error) : "unknown AL error"));
   return note_buffer_data(buffer, format, data, size, frequency, name);
 }
 

@@ -90,7 +90,7 @@ class Adapter {
     std::uint64_t generation = 0;         // which note_buffer_data described it
   };
   struct Mirror {
-    std::uint32_t id = 0;  // the soundpaint source
+    std::uint32_t id = 0;          // the soundpaint source
     std::uint64_t generation = 0;  // the buffer description it was made from (0: none yet)
     bool loop = false;             // AL_LOOPING when last read
   };
