@@ -6,8 +6,9 @@
 # and runs every test through ctest, whose summary closes the output.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# OpenAL Soft too, so that the optional OpenAL adapter is built and tested.
-bash scripts/install-deps.sh openal
+# OpenAL Soft too, so that the optional OpenAL adapter is built and tested,
+# and sox and espeak-ng, which make examples/openal's sounds.
+bash scripts/install-deps.sh openal sounds
 
 echo "== sanitizers (ASan + UBSan, optimised build in build-asan/)"
 sanitized_tests=(test_scene test_config test_bvh test_wide_bvh test_bvh_refit test_ray_model test_simulation test_sound_scene test_capi
