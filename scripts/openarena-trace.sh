@@ -82,9 +82,43 @@ grep -c '"type":"play"' "$out/trace.jsonl" | xargs echo "  plays:"
 tail -n 1 "$out/trace.jsonl"
 
 if [ -f "$level" ]; then
-  for s in 20 25 30; do
+  # Pictures from the player's position, at the two busiest 2 s windows of
+  # footsteps and gunfire, facing where those sounds were (mean position,
+  # in the scene's metres: (x, y, z) -> (x/32, z/32, -y/32)).
+  python3 - "$out/trace.jsonl" >"$out/windows.txt" <<'PY'
+import json, sys
+names, events = {}, []
+for line in open(sys.argv[1]):
+    e = json.loads(line)
+    if e["type"] == "buffer":
+        names[e["buffer"]] = e["name"] or ""
+    elif e["type"] == "play" and not e["relative"] and e["position"] != [0, 0, 0]:
+        n = names.get(e["buffer"], "")
+        if "/footsteps/" in n or "/weapons/machinegun/machgf" in n or "/weapons/shotgun/" in n:
+            events.append((e["t"], e["position"]))
+best = []
+for t0 in sorted({int(t) for t, _ in events}):
+    inside = [p for t, p in events if t0 <= t < t0 + 2]
+    best.append((len(inside), t0, inside))
+best.sort(reverse=True)
+chosen = []
+for count, t0, inside in best:
+    if all(abs(t0 - c) >= 3 for c, _ in chosen):
+        chosen.append((t0, inside))
+    if len(chosen) == 2:
+        break
+for t0, inside in chosen:
+    x = sum(p[0] for p in inside) / len(inside) / 32
+    y = sum(p[2] for p in inside) / len(inside) / 32
+    z = -sum(p[1] for p in inside) / len(inside) / 32
+    print(t0, f"{x:.2f},{y:.2f},{z:.2f}")
+PY
+  while read -r start look; do
     build/soundpaint render "$level" --events "$out/trace.jsonl" --event-axes quake \
-      --event-rules data/openarena-categories.json --event-start "$s" --steps 120 \
-      --out "$out/oa_dm1-trace-$s.png"
-  done
+      --event-rules data/openarena-categories.json --event-start "$start" --steps 120 --look-at "$look" \
+      --out "$out/oa_dm1-trace-$((start + 2))s.png"
+  done <"$out/windows.txt"
+  echo "openarena-trace.sh: pictures in $out (trace time in the name)"
+else
+  echo "openarena-trace.sh: no $level: no pictures (LEVEL=path/to/oa_dm1-draw.glb)"
 fi

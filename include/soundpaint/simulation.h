@@ -222,7 +222,8 @@ struct SceneCommand;  // src/sim/scene_inbox.h
 // Threads. A game steps on its render thread and learns of sounds on its
 // audio thread (an FMOD/Wwise callback, its own mixer). So:
 // - "Any thread": set_listener, add_source, update_source, move_source,
-//   remove_source, play, emit and set_instance_transform check their
+//   remove_source, play, emit, set_signal, set_voice, set_voice_level,
+//   feed_voice and set_instance_transform check their
 //   arguments at once (errors as documented) and queue the change under a
 //   mutex; the next step takes the queue at its start, before it plans or
 //   refits, and applies the changes in call order. They never wait for a

@@ -155,9 +155,9 @@ case "$mode" in
       esac
     done
     step "the C API's headers as C99"
-    printf '#include <soundpaint/soundpaint.h>\n#include <soundpaint/soundpaint_vulkan.h>\n' >"$out/capi.c"
+    printf '#include <soundpaint/soundpaint.h>\n#include <soundpaint/soundpaint_vulkan.h>\n#include <soundpaint/soundpaint_signal.h>\n' >"$out/capi.c"
     "$cc" -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include" -MMD -MF "$out/capi.d" \
-      "$out/capi.c" || fail "soundpaint.h and soundpaint_vulkan.h do not compile as C99"
+      "$out/capi.c" || fail "soundpaint.h, soundpaint_vulkan.h and soundpaint_signal.h do not compile as C99"
     check_deps "$out/capi.d" capi.c
     ;;
 
