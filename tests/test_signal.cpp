@@ -91,6 +91,12 @@ TEST(SignalLevel, BadInputIsRefusedNamingTheProblem) {
   EXPECT_EQ(error(Signal::from_pcm({}, 48000.0)), "Signal::from_pcm: no samples");
   EXPECT_NE(error(Signal::from_pcm(nan_sample, 48000.0, 3)).find("not a whole number of 3-channel frames"),
             std::string::npos);
+  // A position or window no caller should give reads as silence, and a
+  // huge window over a loop is its mean, not an overflow.
+  const Signal half = Signal::from_pcm(square(0.5, 0.01), 48000.0).value();
+  EXPECT_EQ(half.level_db(std::numeric_limits<double>::quiet_NaN(), 0.01, true), -kInf);
+  EXPECT_EQ(half.level_db(0.0, -1.0, false), -kInf);
+  EXPECT_NEAR(half.level_db(0.0, 1e300, true), 20.0 * std::log10(0.5), 1e-6);
   const float bad_level[] = {std::numeric_limits<float>::infinity()};
   EXPECT_NE(error(Signal::from_levels(bad_level, 0.01)).find("level 0 must be"), std::string::npos);
   EXPECT_NE(error(Signal::from_levels(bad_level, 0.0)).find("hop_seconds"), std::string::npos);

@@ -45,7 +45,8 @@ class Signal {
   // RMS of the blocks from the one holding `position` on, round(window /
   // block) of them (at least one). Past the end the sound is silence, or,
   // with `loop`, the signal again from its start (and `position` is taken
-  // modulo duration()). Before 0: silence. -infinity when all is silent.
+  // modulo duration()). Before 0: silence. -infinity when all is silent,
+  // and for a position that is not finite or a window that is not > 0.
   double level_db(double position, double window, bool loop) const;
 
  private:

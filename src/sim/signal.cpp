@@ -124,7 +124,9 @@ double Signal::mean_square(double position, double window, bool loop) const {
     return 0.0;
   }
   const std::size_t first = std::min(blocks - 1, static_cast<std::size_t>(x));
-  const std::size_t count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(window / block_seconds_)));
+  // Capped before rounding: a window of 1e300 s must not overflow the cast.
+  const double span = std::min(window / block_seconds_, 1e12);
+  const std::size_t count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(span)));
   double sum = 0.0;
   if (!loop) {
     sum = prefix_[std::min(blocks, first + count)] - prefix_[first];
@@ -139,6 +141,7 @@ double Signal::mean_square(double position, double window, bool loop) const {
 }
 
 double Signal::level_db(double position, double window, bool loop) const {
+  if (!std::isfinite(position) || !(window > 0.0)) return -std::numeric_limits<double>::infinity();
   const double power = mean_square(position, window, loop);
   if (!(power > 0.0)) return -std::numeric_limits<double>::infinity();
   return 10.0 * std::log10(power);
