@@ -37,6 +37,20 @@ install(TARGETS soundpaint_cli EXPORT soundpaintTargets
 install(EXPORT soundpaintTargets NAMESPACE soundpaint:: DESTINATION ${SOUNDPAINT_INSTALL_CMAKEDIR}
         COMPONENT soundpaint_development)
 
+# The OpenAL adapter, where it was built: its own export set, which
+# find_package(soundpaint COMPONENTS openal) loads, so the core package
+# never needs OpenAL.
+if(SOUNDPAINT_HAVE_OPENAL)
+  install(FILES ${PROJECT_SOURCE_DIR}/openal/include/soundpaint/openal.h
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/soundpaint COMPONENT soundpaint_development)
+  install(TARGETS soundpaint_openal EXPORT soundpaintOpenALTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT soundpaint_development
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT soundpaint_runtime
+                  NAMELINK_COMPONENT soundpaint_development)
+  install(EXPORT soundpaintOpenALTargets NAMESPACE soundpaint:: DESTINATION ${SOUNDPAINT_INSTALL_CMAKEDIR}
+          COMPONENT soundpaint_development)
+endif()
+
 # What the config file must find again: a static libsoundpaint brings its
 # link-only dependencies along.
 if(BUILD_SHARED_LIBS)

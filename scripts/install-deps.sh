@@ -5,7 +5,10 @@
 # needs (libclang-rt-14-dev, only recommended by clang, so named here) and
 # clang-format for scripts/format.sh. `install-deps.sh embree` adds
 # libembree-dev, for -DSOUNDPAINT_EMBREE=ON (cpu_traversal "embree") and
-# bench_rays' Embree comparison. Extras combine: `install-deps.sh fuzz embree`.
+# bench_rays' Embree comparison. `install-deps.sh openal` adds OpenAL Soft
+# (libopenal-dev), for the optional OpenAL adapter soundpaint::openal and
+# its trace shim; `sounds` adds sox and espeak-ng, which make the sounds of
+# examples/openal. Extras combine: `install-deps.sh fuzz embree`.
 set -euo pipefail
 
 packages=(
@@ -19,8 +22,10 @@ for extra in "$@"; do
   case "$extra" in
     fuzz) packages+=(clang libclang-rt-14-dev clang-format) ;;
     embree) packages+=(libembree-dev) ;;
+    openal) packages+=(libopenal-dev) ;;
+    sounds) packages+=(sox espeak-ng) ;;
     *)
-      echo "install-deps.sh: unknown extra '$extra' (fuzz, embree)" >&2
+      echo "install-deps.sh: unknown extra '$extra' (fuzz, embree, openal, sounds)" >&2
       exit 2
       ;;
   esac

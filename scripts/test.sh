@@ -6,10 +6,13 @@
 # and runs every test through ctest, whose summary closes the output.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+# OpenAL Soft too, so that the optional OpenAL adapter is built and tested,
+# and sox and espeak-ng, which make examples/openal's sounds.
+bash scripts/install-deps.sh openal sounds
 
 echo "== sanitizers (ASan + UBSan, optimised build in build-asan/)"
 sanitized_tests=(test_scene test_config test_bvh test_wide_bvh test_bvh_refit test_ray_model test_simulation test_sound_scene test_capi
+                 test_signal test_capi_signal
                  test_scene_confinement test_scene_limits test_config_limits test_thread_pool test_build_workers test_memory_estimate
                  test_allocations test_output_path test_capi_untrusted test_capi_threads test_hostile_scenes)
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOUNDPAINT_SANITIZE=ON -DSOUNDPAINT_WERROR=ON \

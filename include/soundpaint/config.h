@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,6 +18,8 @@
 #include "soundpaint/result.h"
 
 namespace sp {
+
+class Signal;  // soundpaint/signal.h
 
 // Acoustic properties of a collision layer (docs/model.md's symbols: rho_ref,
 // alpha_layer).
@@ -43,6 +46,13 @@ struct SourceDesc {
   double duration = 1.0;           // seconds of sound per interval, >= 0
   double interval = 1.0;           // seconds between sound starts, > 0
   double phase = 0.0;              // seconds before the first start, >= 0
+  // The sound it plays (soundpaint/signal.h; docs/model.md#loudness-from-the-signal).
+  // Set: each step's E0 is `loudness` scaled by the signal's short-term
+  // level at the play position (the config's `signal` law), and nothing is
+  // emitted below the law's floor. Empty: E0 is `loudness` whenever it plays.
+  // Shared and immutable, so copies of a description are cheap.
+  std::shared_ptr<const Signal> signal;
+  bool loop = false;  // the signal starts again where it ends (looping sounds)
 };
 
 enum class BudgetWeighting { Even, Proximity };
@@ -98,6 +108,17 @@ struct CueSettings {
   float toward_angle = 30.0f;
 };
 
+// How a source's signal becomes its E0 (the config's `signal`;
+// docs/model.md#loudness-from-the-signal): the level L, in dB re full scale,
+// of the RMS over `window` seconds from the play position, gives
+//   E0 = loudness * clamp((L - floor_db) / (reference_db - floor_db), 0, 1),
+// and a step whose E0 is 0 or at most min_energy emits nothing.
+struct SignalSettings {
+  std::optional<double> window;  // seconds in [0.001, 1]; default: the config's dt (a step's own sound)
+  float floor_db = -60.0f;       // at or below this level nothing is emitted
+  float reference_db = 0.0f;     // this level and above give E0 = loudness; > floor_db
+};
+
 struct Config {
   float scan_radius = 50.0f;       // R_scan, metres
   std::uint32_t ray_budget = 500;  // new rays per step, all sources together
@@ -122,6 +143,7 @@ struct Config {
   DisplaySettings display;                        // how indicators are drawn (docs/model.md#the-display)
   DiffractionSettings diffraction;                // sound bending round edges (docs/model.md#diffraction)
   CueSettings cues;                               // what reaches the player (docs/model.md#cues-for-the-player)
+  SignalSettings signal;                          // loudness from the signal (docs/model.md#loudness-from-the-signal)
   CpuTraversal cpu_traversal = CpuTraversal::Soundpaint;
 };
 

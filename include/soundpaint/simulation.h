@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -196,10 +198,31 @@ inline constexpr std::uint32_t kDefaultSourceCapacity = 1024;
 
 struct StepPlan;  // src/sim/step_plan.h
 
-// A host-triggered play window [start, end) in seconds (SoundScene::play).
+// A host-triggered play window [start, end) in seconds (SoundScene::play,
+// emit, set_voice), and what the host said of the sound in it.
 struct PlayWindow {
   double start = 0.0;
-  double end = 0.0;  // end <= start: none
+  double end = 0.0;  // end <= start: none; +infinity: until the voice stops
+  // The time at which the source's signal (SourceDesc::signal) is at its
+  // start: in the window its play position at time t is t - signal_origin.
+  double signal_origin = 0.0;
+  // A voice's latest level in dB re full scale (set_voice_level); NaN:
+  // none, the signal (or the plain loudness) decides.
+  double level_db = std::numeric_limits<double>::quiet_NaN();
+  float gain = 1.0f;  // a voice's amplitude gain, scaling its level (set_voice)
+};
+
+// What an audio engine knows of one voice it plays (SoundScene::set_voice):
+// where it is, whether it plays, how loud it is set, and where it is in its
+// sound. docs/integrating.md shows where FMOD or Wwise would give it.
+struct VoiceState {
+  Vec3 position;         // metres, world space
+  bool playing = false;  // false: stopped (or paused); nothing is emitted
+  float gain = 1.0f;     // linear amplitude factor >= 0 on the level (AL_GAIN, a voice's volume)
+  // Seconds into the source's signal at the next step, which then runs on
+  // with the steps; negative: keep the running position (a voice that
+  // starts now starts at 0).
+  double signal_position = -1.0;
 };
 
 // The bound on where a moving part may be placed: every vertex a
@@ -224,7 +247,8 @@ struct SceneCommand;  // src/sim/scene_inbox.h
 // Threads. A game steps on its render thread and learns of sounds on its
 // audio thread (an FMOD/Wwise callback, its own mixer). So:
 // - "Any thread": set_listener, add_source, update_source, move_source,
-//   remove_source, play, emit and set_instance_transform check their
+//   remove_source, play, emit, set_signal, set_voice, set_voice_level,
+//   feed_voice and set_instance_transform check their
 //   arguments at once (errors as documented) and queue the change under a
 //   mutex; the next step takes the queue at its start, before it plans or
 //   refits, and applies the changes in call order. They never wait for a
@@ -282,6 +306,27 @@ class SoundScene {
   // step on, whatever its emission pattern says: "this sound just started"
   // from a game's audio engine (FMOD/Wwise callback, the engine's own mixer).
   Result<bool> play(std::uint32_t id, double duration);
+  // Any thread. Attaches the sound a source plays (SourceDesc::signal and
+  // ::loop); a null signal detaches it (E0 is then its loudness).
+  Result<bool> set_signal(std::uint32_t id, std::shared_ptr<const Signal> signal, bool loop);
+
+  // The voice API (docs/integrating.md#voices). A voice is a source whose
+  // playing the host's audio engine tells, call by call, rather than a
+  // pattern: add it with duration 0 (silent by pattern), then give its
+  // state whenever it changes or once a frame. Any thread: its position,
+  // whether it plays (from the next step until a call says it stopped),
+  // its gain and where it is in its signal.
+  Result<bool> set_voice(std::uint32_t id, const VoiceState& state);
+  // Any thread: the level of what the voice plays now, in dB re full scale
+  // (before its gain), as a mixer or DSP callback measures it; it holds
+  // until the next level, and overrides the source's signal. -infinity is
+  // silence; NaN hands the level back to the signal. Errors: +infinity.
+  Result<bool> set_voice_level(std::uint32_t id, double level_db);
+  // Any thread: set_voice_level with the RMS level of one block of the
+  // voice's samples (interleaved float, full scale 1): what a DSP callback
+  // calls with each block it processes (a few ms to a frame of sound).
+  Result<bool> feed_voice(std::uint32_t id, std::span<const float> samples);
+
   // Any thread. A one-shot sound: a source that plays `source` for
   // `duration` seconds from the next step on, then removes itself. Its
   // pattern fields are ignored. Returns its id (valid until it ends).
@@ -329,6 +374,7 @@ class SoundScene {
   void take_changes();
   void apply(detail::SceneCommand& command);
   void end_source(std::uint32_t id);
+  void apply_voice(std::uint32_t id, const VoiceState& state, double t);
   void note_stepping_thread();
   double next_step_time() const { return static_cast<double>(next_step_) * world_.config.dt; }
   // With the inbox's mutex held: InvalidArgument unless `id` is live.

@@ -118,8 +118,8 @@ sp_result guarded(Fn&& body) noexcept {
 // --- Live handles ---
 // Each kind has its own set, so a sound scene that is a simulation's member
 // never collides with another kind of handle at the same address.
-enum class HandleKind { Scene, Simulation, Visualizer, SoundScene };
-inline constexpr int kHandleKinds = 4;
+enum class HandleKind { Scene, Simulation, Visualizer, SoundScene, Signal };
+inline constexpr int kHandleKinds = 5;
 
 // Makes `handle` live, with the sound scene it owns (if any) live with it.
 // Throws std::bad_alloc, registering nothing.

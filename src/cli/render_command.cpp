@@ -13,6 +13,7 @@
 #include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
+#include "cli/event_options.h"
 #include "render/png_writer.h"
 #include "render/renderer.h"
 #include "render/view_camera.h"
@@ -63,17 +64,23 @@ void check_device_limit(const vk::Context& context, std::uint32_t width, std::ui
 }  // namespace
 
 int run_render(const std::vector<std::string>& args) {
-  ParsedArgs parsed =
-      parse_args(args,
-                 with_options(with_options({"--config", "--backend", "--steps", "--seed", "--threads", "--out",
-                                            "--width", "--height", "--camera-pos", "--look-at", "--fov", "--frames"},
-                                           kSceneLimitValueOptions),
-                              kMemoryLimitValueOptions),
-                 with_options({"--help"}, kSceneLimitFlagOptions));
+  ParsedArgs parsed = parse_args(
+      args,
+      with_options(with_options(with_options({"--config", "--backend", "--steps", "--seed", "--threads", "--out",
+                                              "--width", "--height", "--camera-pos", "--look-at", "--fov", "--frames"},
+                                             kSceneLimitValueOptions),
+                                kMemoryLimitValueOptions),
+                   kEventValueOptions),
+      with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(scene_limit_help().c_str(), stdout);
     std::fputs(memory_limit_help().c_str(), stdout);
+    std::fputs(event_help().c_str(), stdout);
+    std::fputs(
+        "  (with --events and no --camera-pos, the picture is taken from the trace's listener,\n"
+        "   the player, facing where the player faced)\n",
+        stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
@@ -94,6 +101,7 @@ int run_render(const std::vector<std::string>& args) {
   if (auto text = parsed.value("--look-at")) overrides.look_at = parse_vec3("--look-at", *text);
   if (auto text = parsed.value("--fov")) overrides.yfov_degrees = parse_fov(*text);
   const BackendChoice backend = parse_backend(parsed.value("--backend").value_or("auto"));
+  std::optional<events::TraceReplay> replay = load_event_replay(parsed);
 
   // An unwritable output fails now, not after the simulation; the file only
   // appears under its name once complete.
@@ -113,11 +121,23 @@ int run_render(const std::vector<std::string>& args) {
   check_device_limit(*context, settings.width, settings.height);
   std::unique_ptr<Simulator> simulator = create_simulator_on(
       *context, std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));
+  draw::Renderer renderer(*context, simulator->world(), settings);
+  const double dt = simulator->world().config.dt;
+  auto step = [&](std::uint64_t n) {
+    if (replay) replay->advance(simulator->scene(), static_cast<double>(n) * dt);
+    simulator->step().value();
+  };
+  for (std::uint64_t n = 0; n < steps; ++n) step(n);
+  // A replayed game is seen from its player, unless the options say otherwise.
+  if (replay && replay->listener() && !overrides.position) {
+    overrides.position = glm::vec3(*replay->listener());
+    if (replay->forward() && !overrides.look_at) {
+      const Vec3 p = *replay->listener(), f = *replay->forward();
+      overrides.look_at = glm::vec3(p.x + f.x, p.y + f.y, p.z + f.z);
+    }
+  }
   const draw::ViewCamera camera =
       draw::make_view_camera(loaded.scene.camera, simulator->world(), overrides, settings.width, settings.height);
-  draw::Renderer renderer(*context, simulator->world(), settings);
-
-  for (std::uint64_t n = 0; n < steps; ++n) simulator->step().value();
   if (!pattern) {
     single_output->write(draw::encode_png(renderer.render(camera, *simulator)));
     single_output->commit();
@@ -128,7 +148,7 @@ int run_render(const std::vector<std::string>& args) {
     return 0;
   }
   for (std::uint64_t k = 0; k < *frames; ++k) {
-    simulator->step().value();
+    step(steps + k);
     draw::write_png(pattern->format(k), renderer.render(camera, *simulator));
   }
   std::printf("%llu frames %s .. %s: %ux%u, after %llu..%llu steps on %s\n", static_cast<unsigned long long>(*frames),

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/event_options.h"
 #include "cli/limit_options.h"
 #include "cli/options.h"
 #include "cli/world_loading.h"
@@ -35,16 +36,18 @@ constexpr const char* kHelp =
 }  // namespace
 
 int run_simulate(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(
-      args,
-      with_options(with_options({"--config", "--backend", "--steps", "--seed", "--threads", "--indicators", "--stats"},
-                                kSceneLimitValueOptions),
-                   kMemoryLimitValueOptions),
-      with_options({"--help"}, kSceneLimitFlagOptions));
+  ParsedArgs parsed = parse_args(args,
+                                 with_options(with_options(with_options({"--config", "--backend", "--steps", "--seed",
+                                                                         "--threads", "--indicators", "--stats"},
+                                                                        kSceneLimitValueOptions),
+                                                           kMemoryLimitValueOptions),
+                                              kEventValueOptions),
+                                 with_options({"--help"}, kSceneLimitFlagOptions));
   if (parsed.flags.count("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(scene_limit_help().c_str(), stdout);
     std::fputs(memory_limit_help().c_str(), stdout);
+    std::fputs(event_help().c_str(), stdout);
     return 0;
   }
   if (parsed.positionals.size() != 1)
@@ -65,6 +68,7 @@ int run_simulate(const std::vector<std::string>& args) {
   const bool stdout_taken =
       (indicators_path && names_stdout(*indicators_path)) || (stats_path && names_stdout(*stats_path));
   std::FILE* const report = stdout_taken ? stderr : stdout;
+  std::optional<events::TraceReplay> replay = load_event_replay(parsed);
 
   LoadedWorld loaded =
       load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
@@ -80,7 +84,9 @@ int run_simulate(const std::vector<std::string>& args) {
   if (stats_path) stats_file.emplace(*stats_path);
 
   StepTimings timings;
+  const double dt = simulator->world().config.dt;
   for (std::uint64_t n = 0; n < steps; ++n) {
+    if (replay) replay->advance(simulator->scene(), static_cast<double>(n) * dt);
     auto start = std::chrono::steady_clock::now();
     simulator->step().value();
     auto end = std::chrono::steady_clock::now();

@@ -15,6 +15,7 @@
 #include "config/config_rules.h"
 #include "config/cues_json.h"
 #include "config/diffraction_json.h"
+#include "config/signal_json.h"
 #include "config/display_json.h"
 #include "config/json_fields.h"
 #include "config/layer_names.h"
@@ -164,6 +165,7 @@ constexpr KeyReader kKeyReaders[] = {
     {"display", [](const json& v, const JsonPath& at, Config& c) { read_display(v, at, c.display); }},
     {"diffraction", [](const json& v, const JsonPath& at, Config& c) { read_diffraction(v, at, c.diffraction); }},
     {"cues", [](const json& v, const JsonPath& at, Config& c) { read_cues(v, at, c.cues); }},
+    {"signal", [](const json& v, const JsonPath& at, Config& c) { read_signal(v, at, c.signal); }},
 };
 
 Config read_config(const json& root, std::string_view origin) {

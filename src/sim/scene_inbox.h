@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -17,6 +18,7 @@
 
 #include "soundpaint/config.h"
 #include "soundpaint/math.h"
+#include "soundpaint/simulation.h"
 
 namespace sp::detail {
 
@@ -46,6 +48,19 @@ struct PlaySource {
   std::uint32_t id = 0;
   double duration = 0.0;
 };
+struct SetSignal {
+  std::uint32_t id = 0;
+  std::shared_ptr<const Signal> signal;
+  bool loop = false;
+};
+struct SetVoice {
+  std::uint32_t id = 0;
+  VoiceState state;
+};
+struct SetVoiceLevel {
+  std::uint32_t id = 0;
+  double level_db = 0.0;
+};
 struct PlaceInstance {
   std::uint32_t instance = 0;
   Mat4 transform;
@@ -55,7 +70,9 @@ struct SceneCommand {
   // moved out of a temporary trips GCC 12's -Wmaybe-uninitialized at -O2.
   template <class Change>
   explicit SceneCommand(Change change_) : change(std::in_place_type<Change>, std::move(change_)) {}
-  std::variant<SetListener, PutSource, UpdateSource, MoveSource, RemoveSource, PlaySource, PlaceInstance> change;
+  std::variant<SetListener, PutSource, UpdateSource, MoveSource, RemoveSource, PlaySource, SetSignal, SetVoice,
+               SetVoiceLevel, PlaceInstance>
+      change;
 };
 
 struct SceneInbox {

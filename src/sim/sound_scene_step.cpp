@@ -3,6 +3,7 @@
 // in call order; then one-shots that are over end, and the step plans or
 // refits from a World no other thread writes.
 #include <algorithm>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <type_traits>
@@ -51,7 +52,7 @@ void SoundScene::apply(detail::SceneCommand& command) {
           one_shot_.resize(slots, false);
           world_.sources[change.id] = std::move(change.source);
           world_.source_active[change.id] = true;
-          play_windows_[change.id] = change.one_shot ? PlayWindow{t, t + change.duration} : PlayWindow{};
+          play_windows_[change.id] = change.one_shot ? PlayWindow{t, t + change.duration, t} : PlayWindow{};
           one_shot_[change.id] = change.one_shot;
           resolve_source_display(world_, change.id);
         } else if constexpr (std::is_same_v<Change, detail::UpdateSource>) {
@@ -71,13 +72,46 @@ void SoundScene::apply(detail::SceneCommand& command) {
         } else if constexpr (std::is_same_v<Change, detail::RemoveSource>) {
           if (live(change.id)) end_source(change.id);
         } else if constexpr (std::is_same_v<Change, detail::PlaySource>) {
-          if (live(change.id)) play_windows_[change.id] = {t, t + change.duration};
+          if (!live(change.id)) return;
+          PlayWindow& window = play_windows_[change.id];
+          window.start = t;
+          window.end = t + change.duration;
+          window.signal_origin = t;  // the sound starts
+        } else if constexpr (std::is_same_v<Change, detail::SetSignal>) {
+          if (!live(change.id)) return;
+          world_.sources[change.id].signal = std::move(change.signal);
+          world_.sources[change.id].loop = change.loop;
+        } else if constexpr (std::is_same_v<Change, detail::SetVoice>) {
+          if (live(change.id)) apply_voice(change.id, change.state, t);
+        } else if constexpr (std::is_same_v<Change, detail::SetVoiceLevel>) {
+          if (live(change.id)) play_windows_[change.id].level_db = change.level_db;
         } else if constexpr (std::is_same_v<Change, detail::PlaceInstance>) {
           world_.instance_transforms[change.instance] = change.transform;
           geometry_pending_ = true;
         }
       },
       command.change);
+}
+
+// A voice plays from the step that learns it started until one learns it
+// stopped: an open-ended window, its signal's position kept running
+// unless the host says where it is.
+void SoundScene::apply_voice(std::uint32_t id, const VoiceState& state, double t) {
+  world_.sources[id].position = state.position;
+  PlayWindow& window = play_windows_[id];
+  window.gain = state.gain;
+  const bool sounding = t >= window.start && t < window.end;
+  if (state.playing) {
+    if (!sounding || window.end != std::numeric_limits<double>::infinity()) {
+      window.start = t;
+      window.end = std::numeric_limits<double>::infinity();
+      window.signal_origin = t;
+    }
+    if (state.signal_position >= 0.0) window.signal_origin = t - state.signal_position;
+  } else if (sounding) {
+    window.end = t;
+    window.level_db = std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 void SoundScene::plan(std::uint64_t step, StepPlan& out) {

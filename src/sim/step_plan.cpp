@@ -1,4 +1,5 @@
 #include "core/glm_interop.h"
+#include "sim/step_loudness.h"
 #include "sim/step_plan.h"
 #include "sp_types.h"
 
@@ -57,21 +58,27 @@ StepPlan plan_step(const World& world, std::uint64_t step, glm::vec3 listener,
     const SourceDesc& source = world.sources[id];
     if (!world.source_active[id]) continue;
     const PlayWindow& window = play_windows[id];
-    bool playing = source_pattern_plays(source, t) || (t >= window.start && t < window.end);
+    const bool in_window = t >= window.start && t < window.end;
+    bool playing = source_pattern_plays(source, t) || in_window;
     if (!playing) continue;
     double d_ls = static_cast<double>(glm::distance(listener, to_glm(source.position)));
     if (d_ls > config.scan_radius || d_ls > source.max_distance) continue;
+    const StepLoudness loudness = step_loudness(source, window, in_window, t, config);
+    if (!loudness.emits) continue;  // below the signal's floor: silence paints nothing
     double proximity = source.max_distance > 0.0f ? std::max(0.0, 1.0 - d_ls / source.max_distance) : 0.0;
 
     shader::StepSource entry{};
     entry.position = source.position;
     entry.max_distance = source.max_distance;
     entry.color = world.source_colors[id];
-    entry.loudness = source.loudness;
+    entry.loudness = loudness.energy;
     entry.intensity = static_cast<float>(proximity);
     entry.source_id = id;
     plan.sources.push_back(entry);
-    weights.push_back(config.budget_weighting == BudgetWeighting::Proximity ? proximity : 1.0);
+    // Rays follow energy: a source's share is weighted by its level's gain
+    // (1 without a signal, so runs without signals split as before).
+    const double weight = config.budget_weighting == BudgetWeighting::Proximity ? proximity : 1.0;
+    weights.push_back(loudness.share == 1.0 ? weight : weight * loudness.share);
   }
   std::vector<std::uint32_t> counts = split_budget(config.ray_budget, weights);
   for (std::size_t i = 0; i < plan.sources.size(); ++i) {

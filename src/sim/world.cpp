@@ -79,6 +79,12 @@ void check_config(const Config& c) {
   if (c.cpu_traversal != CpuTraversal::Soundpaint && c.cpu_traversal != CpuTraversal::Embree)
     fail("cpu_traversal is not a CpuTraversal value");
   check_display_settings(c.display);
+  const SignalSettings& signal = c.signal;
+  if (signal.window && !(*signal.window >= 0.001 && *signal.window <= 1.0))
+    fail("signal.window must be in [0.001, 1] seconds");
+  if (!std::isfinite(signal.floor_db) || !std::isfinite(signal.reference_db) ||
+      !(signal.floor_db < signal.reference_db))
+    fail("signal.floor must be finite and below signal.reference");
 }
 
 }  // namespace

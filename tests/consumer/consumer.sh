@@ -86,6 +86,15 @@ case "$mode" in
     "$cmake" --build "$SP_WORK_DIR/find_package" -j"$jobs"
     run_consumer "$SP_WORK_DIR/find_package/consumer_cpp"
     run_consumer "$SP_WORK_DIR/find_package/consumer_c"
+    # The OpenAL adapter, where this soundpaint was built with it.
+    if [ -n "$(find "$prefix" -name soundpaintOpenALTargets.cmake -print -quit)" ]; then
+      build_project "$SP_WORK_DIR/find_package_openal" -DCMAKE_BUILD_TYPE="$config" -DSP_CONSUMER_MODE=package \
+        -DSP_CONSUMER_OPENAL=ON -DCMAKE_PREFIX_PATH="$prefix"
+      "$cmake" --build "$SP_WORK_DIR/find_package_openal" -j"$jobs" --target consumer_openal
+      ALSOFT_DRIVERS=null run_consumer "$SP_WORK_DIR/find_package_openal/consumer_openal"
+    else
+      step "soundpaint was built without OpenAL: no soundpaint::openal to find"
+    fi
     # A C engine enables no C++: soundpaint::capi still links.
     build_project "$SP_WORK_DIR/find_package_c_only" -DCMAKE_BUILD_TYPE="$config" -DSP_CONSUMER_MODE=package \
       -DSP_CONSUMER_LANGUAGES=C -DCMAKE_PREFIX_PATH="$prefix"
@@ -155,9 +164,9 @@ case "$mode" in
       esac
     done
     step "the C API's headers as C99"
-    printf '#include <soundpaint/soundpaint.h>\n#include <soundpaint/soundpaint_vulkan.h>\n' >"$out/capi.c"
+    printf '#include <soundpaint/soundpaint.h>\n#include <soundpaint/soundpaint_vulkan.h>\n#include <soundpaint/soundpaint_signal.h>\n' >"$out/capi.c"
     "$cc" -std=c99 -pedantic -Wall -Wextra -Werror -fsyntax-only -I"$prefix/include" -MMD -MF "$out/capi.d" \
-      "$out/capi.c" || fail "soundpaint.h and soundpaint_vulkan.h do not compile as C99"
+      "$out/capi.c" || fail "soundpaint.h, soundpaint_vulkan.h and soundpaint_signal.h do not compile as C99"
     check_deps "$out/capi.d" capi.c
     ;;
 
@@ -168,7 +177,9 @@ case "$mode" in
     grep -qx 'CMAKE_BUILD_TYPE:STRING=' "$SP_WORK_DIR/add_subdirectory_no_build_type/CMakeCache.txt" ||
       fail "soundpaint gave a parent without a build type one of its own"
     dir="$SP_WORK_DIR/add_subdirectory"
-    build_project "$dir" -DCMAKE_BUILD_TYPE=Debug -DSP_CONSUMER_MODE=subdirectory -DSP_SOURCE_DIR="$SP_SOURCE_DIR"
+    # With the OpenAL adapter off: the core must not need OpenAL.
+    build_project "$dir" -DCMAKE_BUILD_TYPE=Debug -DSP_CONSUMER_MODE=subdirectory -DSP_SOURCE_DIR="$SP_SOURCE_DIR" \
+      -DSOUNDPAINT_OPENAL=OFF -DSP_CONSUMER_NO_OPENAL=ON
     grep -qx 'CMAKE_BUILD_TYPE:STRING=Debug' "$dir/CMakeCache.txt" || fail "the parent's build type is no longer Debug"
     step "build the consumers only (the library with them), -j$jobs"
     "$cmake" --build "$dir" -j"$jobs" --target consumer_c consumer_cpp
