@@ -36,8 +36,8 @@ constexpr const char* kHelp =
     "  --screenshot FILE    write the last frame as a PNG (with --frames); checked before the first\n"
     "                       frame, written as render's --out is\n"
     "  --resize-at K,W,H    at frame K ask the window for W x H pixels (scripted runs)\n"
-    "  --config-checks-from-stdin  check --config once per line read from standard input, before\n"
-    "                       each frame, until the input ends (scripted runs, with --frames)\n"
+    "  --config-checks-from-stdin  check --config before the frames standard input names, one\n"
+    "                       number a line, until the input ends (scripted runs, with --frames)\n"
     "  --no-panel           start with the panel hidden (F1 shows it)\n"
     "\n"
     "controls:\n";
@@ -53,17 +53,9 @@ int run_view(const std::vector<std::string>& args) {
                               kMemoryLimitValueOptions),
                  with_options({"--help", "--no-panel", "--config-checks-from-stdin"}, kSceneLimitFlagOptions));
 #ifdef SOUNDPAINT_HAVE_VIEWER
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(view::kControls, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    return 0;
-  }
-  if (parsed.positionals.size() != 1)
-    throw Exception(ErrorCode::InvalidArgument, "view needs exactly one SCENE argument (see --help)");
+  if (printed_help(parsed, {kHelp, view::kControls, scene_limit_help(), memory_limit_help()})) return 0;
   view::ViewerOptions options;
-  options.scene_path = parsed.positionals[0];
+  options.scene_path = scene_argument(parsed, "view");
   options.config_path = parsed.value("--config");
   options.panel = parsed.flags.count("--no-panel") == 0;
   options.scene_options = scene_load_options(parsed);
@@ -107,13 +99,9 @@ int run_view(const std::vector<std::string>& args) {
                  options.screenshot->c_str(), static_cast<unsigned long long>(options.frames));
   return 0;
 #else
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    std::fputs("  (this build has no viewer: GLFW or Dear ImGui was missing when it was configured)\n", stdout);
+  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(),
+                            "  (this build has no viewer: GLFW or Dear ImGui was missing when it was configured)\n"}))
     return 0;
-  }
   throw Exception(ErrorCode::InvalidArgument,
                   "this soundpaint was built without the viewer (GLFW and Dear ImGui: libglfw3-dev, libimgui-dev); "
                   "`soundpaint render` draws the same picture into a PNG");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bvh/bvh.h"
 #include "core/printable_text.h"
 #include "draw/image_barrier.h"
 #include "draw/rendering.h"
@@ -142,6 +144,7 @@ class Viewer {
   void handle_input(float seconds);
   void place_or_play(bool play);
   Change& change();
+  std::optional<std::uint64_t> read_scripted_check();
   void check_config();
   void apply_change();
   void show_session_in_panel();
@@ -176,7 +179,9 @@ class Viewer {
   std::optional<Change> change_;
   bool swapchain_stale_ = false;
   std::optional<ConfigWatch> watch_;
-  bool script_ended_ = false;  // config_checks_from_stdin: the input has ended
+  // config_checks_from_stdin: the frame before which the file is checked
+  // next, as the input's last line named it; nothing once the input ended.
+  std::optional<std::uint64_t> scripted_check_;
   std::uint64_t frame_ = 0;
 };
 
@@ -190,7 +195,6 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, Wo
   surface_ = std::make_unique<Surface>(context_->instance(), window_.create_surface(context_->instance()));
   swapchain_ = std::make_unique<Swapchain>(*context_, surface_->get(), window_.framebuffer_size());
 
-  const VkDevice device = context_->device();
   pool_ = vk::create_command_pool(*context_, context_->queue_family(), VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                   "viewer frames");
   for (std::uint32_t i = 0; i < kFramesInFlight; ++i) {
@@ -221,9 +225,8 @@ Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, Wo
       paint(*context_, *swapchain_, std::move(first_world),
             {.backend = session_.backend, .memory_budget_bytes = options_.memory_budget_bytes}, session_.placed);
   show_session_in_panel();
-  panel_ = std::make_unique<UiPanel>(window_.handle(), context_->instance(), context_->physical_device(), device,
-                                     context_->queue_family(), context_->queue(), swapchain_->format(),
-                                     swapchain_->image_count(), swapchain_->views(), extent);
+  panel_ = std::make_unique<UiPanel>(window_.handle(), *context_, swapchain_->format(), swapchain_->image_count(),
+                                     swapchain_->views(), extent);
   panel_->set_visible(options_.panel);
   stats_.device = context_->description();
   if (watch_) std::fprintf(stderr, "view: watching %s for changes\n", printable_text(watch_->path().string()).c_str());
@@ -240,6 +243,21 @@ Viewer::~Viewer() {
 Change& Viewer::change() {
   if (!change_) change_ = Change{.config = session_.config, .backend = session_.backend};
   return *change_;
+}
+
+// config_checks_from_stdin: waits for the input's next line, the frame
+// before which the file is checked next. Nothing when the input has ended.
+std::optional<std::uint64_t> Viewer::read_scripted_check() {
+  std::string line;
+  if (!std::getline(std::cin, line)) return std::nullopt;
+  std::uint64_t frame = 0;
+  const char* const end = line.data() + line.size();
+  const auto [stop, error] = std::from_chars(line.data(), end, frame);
+  if (error != std::errc() || stop != end || line.empty())
+    throw Exception(ErrorCode::InvalidArgument,
+                    "--config-checks-from-stdin: expected a frame number on each line, got '" + printable_text(line) +
+                        "'");
+  return frame;
 }
 
 void Viewer::check_config() {
@@ -277,7 +295,12 @@ void Viewer::apply_change() {
     session_.config = std::move(wanted.config);
     session_.backend = wanted.backend;
     stats_.notice.clear();
-    if (wanted.reload) std::fprintf(stderr, "view: reloaded %s\n", printable_text(watch_->path().string()).c_str());
+    // The level's BVH count says that the new settings share the geometry
+    // (a reload and the panel's ray budget take this same path).
+    if (wanted.reload)
+      std::fprintf(stderr, "view: reloaded %s (ray budget %u; the level's BVH built %llu time(s) this run)\n",
+                   printable_text(watch_->path().string()).c_str(), session_.config.ray_budget,
+                   static_cast<unsigned long long>(bvh_builds()));
   } catch (const std::exception& e) {
     // Messages quote names from the files: escaped before the terminal or the panel shows them.
     const std::string line =
@@ -406,6 +429,10 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
   Visualizer& visualizer = *painting_.visualizer;
   if (!session_.listener_pinned) (void)visualizer.scene().set_listener(camera_.eye);
   stamp(0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
+  // A scripted run shows what its frames computed, however long a step of
+  // the CPU backend takes: the step started a frame ago is handed over now.
+  // The picture of frame N is then the same on any machine, at any load.
+  if (options_.frames > 0) visualizer.wait_for_simulation().value();
   if (!paused_ || step_once_) visualizer.record_simulation(cmd, paused_ ? session_.config.dt : dt).value();
   step_once_ = false;
   visualizer.record_totals(cmd, totals_[slot].get(), 0).value();
@@ -508,6 +535,7 @@ bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
 }
 
 void Viewer::run() {
+  if (watch_ && options_.config_checks_from_stdin) scripted_check_ = read_scripted_check();
   auto previous = std::chrono::steady_clock::now();
   while (!window_.should_close() && (options_.frames == 0 || frame_ < options_.frames)) {
     if (options_.resize_frame > 0 && frame_ == options_.resize_frame)
@@ -523,15 +551,16 @@ void Viewer::run() {
     if (window_.should_close()) break;
 
     // The config file: reloaded when it changes (checked twice a second,
-    // or at each line of a scripted run's input).
-    if (watch_ && options_.config_checks_from_stdin && !script_ended_) {
-      std::string line;
-      if (std::getline(std::cin, line)) {
+    // or before the frames a scripted run's input names, in turn).
+    if (watch_ && options_.config_checks_from_stdin) {
+      // Each check's outcome is applied, and reported, before the viewer
+      // waits for the next line: the test reads the report first.
+      while (scripted_check_ && *scripted_check_ <= frame_) {
         check_config();
-      } else {
-        script_ended_ = true;
+        if (change_) apply_change();
+        scripted_check_ = read_scripted_check();
       }
-    } else if (watch_ && !options_.config_checks_from_stdin && frame_ % 30 == 0) {
+    } else if (watch_ && frame_ % 30 == 0) {
       check_config();
     }
     if (change_) apply_change();

@@ -24,7 +24,9 @@ struct ViewerOptions {
   std::uint32_t width = 1280;
   std::uint32_t height = 720;
   // > 0: exit after this many frames, each one config.dt of game time (a
-  // scripted run); 0: run in real time until the window closes.
+  // scripted run: each frame also waits for the CPU backend's step, so the
+  // frames show the same on any machine); 0: run in real time until the
+  // window closes.
   std::uint64_t frames = 0;
   std::optional<std::filesystem::path> screenshot;  // the last frame, as PNG
   bool panel = true;                                // false: start with the panel hidden (F1 shows it)
@@ -38,10 +40,12 @@ struct ViewerOptions {
   // at start and on reload (--memory-budget).
   std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
   // Scripted runs: instead of twice a second, the config file is checked
-  // once for each line read from standard input, the viewer waiting for
-  // that line before each frame; when the input ends the remaining frames
-  // run with no more checks. A test can then change the file between two
-  // known checks.
+  // before the frames standard input names, one frame number a line (0 is
+  // the first frame; a frame already reached means at once). The viewer
+  // waits for each line at the start, and after each check, so a test
+  // changes the file and then names the frame: the reload happens before
+  // that frame, whatever the machine's speed. When the input ends the
+  // remaining frames run with no more checks.
   bool config_checks_from_stdin = false;
 };
 
