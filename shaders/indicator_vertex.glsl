@@ -30,25 +30,7 @@ layout(location = 4) flat out uvec2 out_depth_size;
 const vec2 kCorners[SP_INDICATOR_QUAD_VERTICES] =
     vec2[](vec2(-1.0, -1.0), vec2(1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0));
 
-// Room around the shape for the anti-aliased edge and the halo: two 1.5 px
-// rings and half a pixel of edge (3.5 px seen square-on; the fragment stage
-// covers nothing further out) and half a pixel for the perspective's change
-// across the quad; or a share of the radius when the viewport's size is
-// unknown, and never more. The pass costs its area, so the quad holds no
-// more than the shape, its tail and this margin. Seen at a grazing angle, a
-// pixel spans more of the surface and the halo, as wide in the spot's frame
-// in every direction, reaches further: there it is cut at the quad's edge
-// (growing the quad with 1 / cosine cost 18% more time on the H100 in
-// bench_draw; bench/RESULTS.md).
-const float kMarginPixels = 4.0;
-const float kMarginRadii = 0.45;
-// Tail length, in radii, when the sound grazes the surface; head-on it has
-// no direction along the surface and no tail.
-const float kMaxTail = 1.6;
-// Direct sound (first hits) stands out: larger and at full strength, while
-// everything reflected or transmitted is drawn a little fainter.
-const float kDirectSize = 1.25;
-const float kIndirectOpacity = 0.75;
+// The quad's margin, tail and sizes: SP_SPOT_* in sp_draw_types.h.
 
 void collapse() {
   // Every corner at the same point outside the clip volume: the instance
@@ -92,7 +74,7 @@ void main() {
   // A fade-in, so a spot never pops on (docs/accessibility.md, flashing).
   opacity *= min(1.0, (age + push.dt) / SP_FADE_IN_SECONDS);
   bool direct = sp_is_direct(ind);
-  opacity *= direct ? 1.0 : kIndirectOpacity;
+  opacity *= direct ? 1.0 : SP_SPOT_INDIRECT_OPACITY;
   bool live = sp_indicator_live(push.current_step, ind.step, push.dt, push.lifetime);
   if (live) opacity = max(opacity * push.opacity_scale, push.min_opacity);
   opacity = min(opacity, 1.0);
@@ -114,18 +96,18 @@ void main() {
   vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
   vec3 tangent = along_length > 1.0e-3 ? along / along_length : normalize(cross(helper, n));
   vec3 bitangent = cross(n, tangent);
-  float tail = (push.flags & SP_DRAW_DIRECTION) != 0u ? kMaxTail * min(along_length, 1.0) : 0.0;
+  float tail = (push.flags & SP_DRAW_DIRECTION) != 0u ? SP_SPOT_MAX_TAIL * min(along_length, 1.0) : 0.0;
 
   // Radius: the indicator's size (a diameter, docs/model.md#indicators) scaled,
   // but never under SP_SHAPE_MIN_PIXELS across on screen, where a shape stops
   // being recognisable (when the viewport's size is known).
-  float radius = 0.5 * ind.size * push.size_scale * (direct ? kDirectSize : 1.0);
+  float radius = 0.5 * ind.size * push.size_scale * (direct ? SP_SPOT_DIRECT_SIZE : 1.0);
   vec4 centre_clip = push.view_proj * vec4(ind.position, 1.0);
   float distance = max(centre_clip.w, 1.0e-3);
-  float margin = kMarginRadii;
+  float margin = SP_SPOT_MARGIN_RADII;
   if (push.pixel_scale > 0.0) {
     radius = max(radius, 0.5 * SP_SHAPE_MIN_PIXELS * distance / push.pixel_scale);
-    margin = min(kMarginRadii, kMarginPixels * distance / (push.pixel_scale * radius));
+    margin = min(SP_SPOT_MARGIN_RADII, SP_SPOT_MARGIN_PIXELS * distance / (push.pixel_scale * radius));
   }
 
   vec3 anchor = ind.position + n * SP_INDICATOR_LIFT;

@@ -41,8 +41,8 @@ const glm::vec3 kEye(0.0f, 1.6f, 0.0f);
 constexpr float kDistance = 10.0f;  // metres from the eye to every source
 constexpr float kToleranceDegrees = 2.0f;
 
-float radians(float degrees) { return degrees * 3.14159265f / 180.0f; }
-float degrees(float radians) { return radians * 180.0f / 3.14159265f; }
+float radians(float degrees) { return degrees * SP_PI / 180.0f; }
+float degrees(float radians) { return radians * 180.0f / SP_PI; }
 
 // Where a source at `bearing` right of -Z and `elevation` above eye level lies.
 glm::vec3 at_bearing(float bearing_degrees, float elevation_degrees = 0.0f) {
@@ -315,7 +315,8 @@ TEST(ArrowHeading, IsTheViewDirectionInTheHorizontalPlane) {
 
 // The ring keeps every arrow's quad on screen at every angle, in wide,
 // square and tall viewports; at the top of a 720-high one the anchor is
-// half the height less the arrow's half-length (2.6 units of 22 px) and 4 px.
+// half the height less the arrow's half-length (from its lowest mark to its
+// highest: 2.6 units of 22 px) and the edge's margin (4 px).
 TEST(ArrowRing, KeepsEveryArrowOnScreen) {
   for (glm::vec2 viewport : {glm::vec2(960, 720), glm::vec2(1920, 1080), glm::vec2(400, 400), glm::vec2(360, 800)}) {
     const float scale = 22.0f;
@@ -336,7 +337,9 @@ TEST(ArrowRing, KeepsEveryArrowOnScreen) {
         }
     }
   }
-  EXPECT_NEAR(shader::sp_arrow_ring_distance(0.0f, glm::vec2(480, 360), 22.0f), 360.0f - 2.6f * 22.0f - 4.0f, 1e-3f);
+  const float half_length = 0.5f * (SP_ARROW_HIGH - SP_ARROW_LOW);
+  EXPECT_NEAR(shader::sp_arrow_ring_distance(0.0f, glm::vec2(480, 360), 22.0f),
+              360.0f - half_length * 22.0f - SP_ARROW_EDGE_PIXELS, 1e-3f);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "core/glm_interop.h"
 #include "sim/world_geometry.h"
 #include "soundpaint/simulation.h"
+#include "sp_draw_types.h"
 #include "sp_shapes.h"
 #include "support/render_checks.h"
 #include "support/run_command.h"
@@ -93,12 +94,12 @@ Projected project(const Camera& camera, const Indicator& indicator) {
 }
 
 // Marks the pixels an indicator's spot may touch: its shape, at least
-// SP_SHAPE_MIN_PIXELS across and a quarter larger for direct sound, its
-// tail of up to 1.6 radii behind it, the halo's margin of 0.45 radii, and
-// 1.5 px of slack (shaders/indicator_vertex.glsl).
+// SP_SHAPE_MIN_PIXELS across and larger for direct sound, its tail behind
+// it, the halo's margin, and 1.5 px of slack (shaders/indicator_vertex.glsl;
+// the SP_SPOT_* sizes).
 void mark_disc(std::vector<bool>& mask, const Projected& p) {
-  const float radius = std::max(1.25f * p.radius, 0.5f * SP_SHAPE_MIN_PIXELS);
-  const float reach = radius * (1.0f + 1.6f + 0.45f) + 1.5f;
+  const float radius = std::max(SP_SPOT_DIRECT_SIZE * p.radius, 0.5f * SP_SHAPE_MIN_PIXELS);
+  const float reach = radius * (1.0f + SP_SPOT_MAX_TAIL + SP_SPOT_MARGIN_RADII) + 1.5f;
   const int x0 = std::max(0, static_cast<int>(p.x - reach));
   const int x1 = std::min(static_cast<int>(kWidth) - 1, static_cast<int>(p.x + reach));
   const int y0 = std::max(0, static_cast<int>(p.y - reach));

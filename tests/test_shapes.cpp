@@ -44,7 +44,7 @@ using Shape = std::uint32_t;
 
 constexpr std::array<const char*, SP_SHAPE_COUNT> kShapeNames = {"disc",     "ring",   "diamond", "cross",   "plus",
                                                                  "triangle", "square", "star",    "hexagon", "clover"};
-constexpr float kPi = 3.14159265f;
+constexpr float kPi = SP_PI;
 constexpr float kDegree = kPi / 180.0f;
 // The minimum size and above (larger ones only have more pixels to differ by).
 constexpr std::array<int, 3> kCheckedDiameters = {static_cast<int>(SP_SHAPE_MIN_PIXELS), 24, 48};
@@ -247,8 +247,9 @@ TEST(Shapes, ExactDistances) {
 }
 
 TEST(Shapes, FitTheDiscWithTheSameWeight) {
-  // A fine grid: nothing inside beyond radius 0.985, the area within 10% of
-  // SP_SHAPE_AREA_SHARE (plus the grid's own error, < 0.5%).
+  // A fine grid: nothing inside beyond the rim (SP_RIM_RADIUS, plus the
+  // grid's half cell), the area within 10% of SP_SHAPE_AREA_SHARE (plus the
+  // grid's own error, < 0.5%).
   constexpr int kSteps = 800;
   for (Shape shape = 0; shape < SP_SHAPE_COUNT; ++shape) {
     int inside = 0;
@@ -257,7 +258,7 @@ TEST(Shapes, FitTheDiscWithTheSameWeight) {
         vec2 p = (vec2(static_cast<float>(i), static_cast<float>(j)) + 0.5f) * (2.0f / kSteps) - vec2(1.0f);
         if (sp_shape_distance(shape, p) > 0.0f) continue;
         ++inside;
-        ASSERT_LE(glm::length(p), 0.985f) << kShapeNames[shape];
+        ASSERT_LE(glm::length(p), SP_RIM_RADIUS + 0.005f) << kShapeNames[shape];
       }
     }
     float share = static_cast<float>(inside) * 4.0f / (kSteps * kSteps) / kPi;
@@ -284,7 +285,7 @@ TEST(Shapes, ExtentHoldsTheShapeTightly) {
   for (Shape shape = 0; shape <= SP_SHAPE_COUNT; ++shape) {
     const float extent = sp_shape_extent(shape);
     ASSERT_GT(extent, 0.5f);
-    ASSERT_LE(extent, 0.98f);
+    ASSERT_LE(extent, SP_RIM_RADIUS);
     float farthest = 0.0f;
     for (int j = 0; j < kSteps; ++j) {
       for (int i = 0; i < kSteps; ++i) {

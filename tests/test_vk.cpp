@@ -86,7 +86,7 @@ std::vector<std::uint32_t> pattern(std::size_t count, std::uint32_t seed) {
 // ---------------------------------------------------------------------------
 // The test_fill kernel: data[i] = value + i for i < count.
 
-constexpr std::uint32_t kFillGroupSize = 64;  // local_size_x of tests/shaders/test_fill.comp
+constexpr std::uint32_t kFillGroupSize = SP_WORKGROUP_SIZE;  // tests/shaders/test_fill.comp's local_size_x
 
 struct FillPush {
   std::uint32_t count;

@@ -21,6 +21,25 @@
 // Fragments fainter than this are discarded: they would round to nothing in
 // an 8-bit target anyway.
 #define SP_MIN_VISIBLE_ALPHA 0.004f
+// Room the indicator quad leaves around the shape for the anti-aliased edge
+// and the halo: two 1.5 px rings and half a pixel of edge (3.5 px seen
+// square-on; the fragment stage covers nothing further out) and half a pixel
+// for the perspective's change across the quad; or a share of the radius
+// when the viewport's size is unknown, and never more. The pass costs its
+// area, so the quad holds no more than the shape, its tail and this margin.
+// Seen at a grazing angle, a pixel spans more of the surface and the halo,
+// as wide in the spot's frame in every direction, reaches further: there it
+// is cut at the quad's edge (growing the quad with 1 / cosine cost 18% more
+// time on the H100 in bench_draw; bench/RESULTS.md).
+#define SP_SPOT_MARGIN_PIXELS 4.0f
+#define SP_SPOT_MARGIN_RADII 0.45f
+// Tail length, in radii, when the sound grazes the surface; head-on it has
+// no direction along the surface and no tail.
+#define SP_SPOT_MAX_TAIL 1.6f
+// Direct sound (first hits) stands out: larger and at full strength, while
+// everything reflected or transmitted is drawn a little fainter.
+#define SP_SPOT_DIRECT_SIZE 1.25f
+#define SP_SPOT_INDIRECT_OPACITY 0.75f
 
 // SceneTriangle.shading: level surfaces lit by the scene's light, or markers
 // that light themselves (bright from every side, shaded only by how far each

@@ -1,8 +1,10 @@
 // Test kernel for tests/test_vk.cpp: data[i] = value + i for i < count.
 #version 460
+#extension GL_GOOGLE_include_directive : require
+#include "sp_types.h"
 
-// Must match kFillGroupSize in tests/test_vk.cpp.
-layout(local_size_x = 64) in;
+// kFillGroupSize in tests/test_vk.cpp.
+layout(local_size_x = SP_WORKGROUP_SIZE) in;
 
 layout(set = 0, binding = 0, std430) buffer Data {
   uint data[];

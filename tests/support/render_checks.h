@@ -52,7 +52,7 @@ inline std::size_t differing_pixels(const draw::RgbaImage& actual, const draw::R
     n += differs ? 1 : 0;
     if (diff == nullptr) continue;
     for (std::size_t c = 0; c < 3; ++c)
-      diff->pixels[i + c] = differs ? (c == 1 ? 0 : 255) : static_cast<std::uint8_t>(actual.pixels[i + c] / 4);
+      diff->pixels[i + c] = static_cast<std::uint8_t>(differs ? (c == 1 ? 0 : 255) : actual.pixels[i + c] / 4);
   }
   return n;
 }
