@@ -35,21 +35,15 @@ int run_check(const std::vector<std::string>& args) {
   ParsedArgs parsed = parse_args(
       args, with_options(with_options({"--config", "--json"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
       with_options({"--help"}, kSceneLimitFlagOptions));
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    return 0;
-  }
-  if (parsed.positionals.size() != 1)
-    throw Exception(ErrorCode::InvalidArgument, "check needs exactly one SCENE argument (see --help)");
+  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help()})) return 0;
+  const std::string& scene_path = scene_argument(parsed, "check");
   CheckSettings settings;
   settings.memory_budget_bytes = memory_budget(parsed);
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();
   std::optional<AtomicFile> json_file;
   if (auto path = parsed.value("--json")) json_file.emplace(*path);  // a refused output fails before the scene is read
-  const Scene scene = load_scene(parsed.positionals[0], scene_load_options(parsed)).value();
+  const Scene scene = load_scene(scene_path, scene_load_options(parsed)).value();
 
   const CheckReport report = check_scene(scene, config, settings).value();
   std::printf("scene: %s\ntriangles: %llu\n", printable_text(scene.path.string()).c_str(),

@@ -51,17 +51,11 @@ int run_info(const std::vector<std::string>& args) {
   ParsedArgs parsed =
       parse_args(args, with_options(with_options({"--config"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
                  with_options({"--help"}, kSceneLimitFlagOptions));
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    return 0;
-  }
-  if (parsed.positionals.size() != 1)
-    throw Exception(ErrorCode::InvalidArgument, "info needs exactly one SCENE argument (see --help)");
+  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help()})) return 0;
+  const std::string& scene_path = scene_argument(parsed, "info");
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();
-  Scene scene = load_scene(parsed.positionals[0], scene_load_options(parsed)).value();
+  Scene scene = load_scene(scene_path, scene_load_options(parsed)).value();
   // info describes scenes without a listener too; simulate would reject them.
   const char* listener_from = config.listener_position ? "config" : scene.camera ? "camera" : "none; origin assumed";
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);

@@ -1,6 +1,7 @@
 #include "cli/options.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 
@@ -92,5 +93,18 @@ float parse_fov(const std::string& text) {
   return value;
 }
 
+
+bool printed_help(const ParsedArgs& parsed, std::initializer_list<std::string_view> sections) {
+  if (parsed.flags.count("--help") == 0) return false;
+  for (std::string_view section : sections) std::fwrite(section.data(), 1, section.size(), stdout);
+  return true;
+}
+
+const std::string& scene_argument(const ParsedArgs& parsed, const char* command) {
+  if (parsed.positionals.size() != 1)
+    throw Exception(ErrorCode::InvalidArgument,
+                    std::string(command) + " needs exactly one SCENE argument (see --help)");
+  return parsed.positionals[0];
+}
 
 }  // namespace sp::cli

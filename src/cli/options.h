@@ -5,10 +5,12 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sp::cli {
@@ -27,6 +29,13 @@ struct ParsedArgs {
 // sp::Exception(InvalidArgument) on unknown options or missing values.
 ParsedArgs parse_args(const std::vector<std::string>& args, const std::set<std::string>& value_options,
                       const std::set<std::string>& flag_options);
+
+// --help: prints the command's help, then each of `sections` (the help of
+// the option groups it takes), and returns true; the command then exits 0.
+bool printed_help(const ParsedArgs& parsed, std::initializer_list<std::string_view> sections);
+
+// The one SCENE argument; throws naming `command` when there are none or several.
+const std::string& scene_argument(const ParsedArgs& parsed, const char* command);
 
 // "x,y,z": three finite numbers (--camera-pos, --look-at); throws naming `option`.
 glm::vec3 parse_vec3(const std::string& option, const std::string& text);

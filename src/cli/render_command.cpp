@@ -72,19 +72,11 @@ int run_render(const std::vector<std::string>& args) {
                                 kMemoryLimitValueOptions),
                    kEventValueOptions),
       with_options({"--help"}, kSceneLimitFlagOptions));
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    std::fputs(event_help().c_str(), stdout);
-    std::fputs(
-        "  (with --events and no --camera-pos, the picture is taken from the trace's listener,\n"
-        "   the player, facing where the player faced)\n",
-        stdout);
+  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(), event_help(),
+                            "  (with --events and no --camera-pos, the picture is taken from the trace's listener,\n"
+                            "   the player, facing where the player faced)\n"}))
     return 0;
-  }
-  if (parsed.positionals.size() != 1)
-    throw Exception(ErrorCode::InvalidArgument, "render needs exactly one SCENE argument (see --help)");
+  const std::string& scene_path = scene_argument(parsed, "render");
   const std::optional<std::string> out = parsed.value("--out");
   if (!out) throw Exception(ErrorCode::InvalidArgument, "render needs --out IMAGE.png (see --help)");
   const std::uint64_t steps = parsed.unsigned_value("--steps", 0, 100'000'000).value_or(60);
@@ -112,8 +104,7 @@ int run_render(const std::vector<std::string>& args) {
     single_output.emplace(*out);
   }
 
-  LoadedWorld loaded =
-      load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
+  LoadedWorld loaded = load_scene_and_world(scene_path, parsed.value("--config"), seed, scene_load_options(parsed));
   auto created = vk::Context::create();
   if (!created) throw Exception(ErrorCode::Vulkan, "render needs a Vulkan device to draw: " + created.error().message);
   // Declared first, destroyed last: the simulator and renderer use it.

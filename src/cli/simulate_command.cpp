@@ -43,15 +43,8 @@ int run_simulate(const std::vector<std::string>& args) {
                                                            kMemoryLimitValueOptions),
                                               kEventValueOptions),
                                  with_options({"--help"}, kSceneLimitFlagOptions));
-  if (parsed.flags.count("--help")) {
-    std::fputs(kHelp, stdout);
-    std::fputs(scene_limit_help().c_str(), stdout);
-    std::fputs(memory_limit_help().c_str(), stdout);
-    std::fputs(event_help().c_str(), stdout);
-    return 0;
-  }
-  if (parsed.positionals.size() != 1)
-    throw Exception(ErrorCode::InvalidArgument, "simulate needs exactly one SCENE argument (see --help)");
+  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(), event_help()})) return 0;
+  const std::string& scene_path = scene_argument(parsed, "simulate");
   const std::uint64_t steps = parsed.unsigned_value("--steps", 0, 100'000'000).value_or(120);
   const auto seed = parsed.unsigned_value("--seed", 0, 0xFFFFFFFFull);
   const auto threads = parsed.unsigned_value("--threads", 1, 1024);
@@ -70,8 +63,7 @@ int run_simulate(const std::vector<std::string>& args) {
   std::FILE* const report = stdout_taken ? stderr : stdout;
   std::optional<events::TraceReplay> replay = load_event_replay(parsed);
 
-  LoadedWorld loaded =
-      load_scene_and_world(parsed.positionals[0], parsed.value("--config"), seed, scene_load_options(parsed));
+  LoadedWorld loaded = load_scene_and_world(scene_path, parsed.value("--config"), seed, scene_load_options(parsed));
   (void)warn_if_penetration_fails(loaded.scene, loaded.world);
   std::unique_ptr<Simulator> simulator = create_simulator(
       std::move(loaded.world), backend, static_cast<unsigned>(threads.value_or(0)), memory_budget(parsed));

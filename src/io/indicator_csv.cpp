@@ -24,6 +24,13 @@ void append_uint(std::string& out, std::uint64_t value) {
   out.push_back(',');
 }
 
+// A vector as three columns.
+void append_vec3(std::string& out, const Vec3& v) {
+  append_float(out, v.x);
+  append_float(out, v.y);
+  append_float(out, v.z);
+}
+
 }  // namespace
 
 struct IndicatorCsvWriter::Impl {
@@ -56,29 +63,19 @@ Result<bool> IndicatorCsvWriter::write(std::span<const Indicator> indicators) {
           append_uint(out, ind.step);
           out += ind.kind == SP_INDICATOR_HIT ? "hit," : "exit,";
           append_uint(out, ind.source_id);
-          append_float(out, ind.position.x);
-          append_float(out, ind.position.y);
-          append_float(out, ind.position.z);
-          append_float(out, ind.normal.x);
-          append_float(out, ind.normal.y);
-          append_float(out, ind.normal.z);
+          append_vec3(out, ind.position);
+          append_vec3(out, ind.normal);
           append_float(out, ind.energy);
           append_uint(out, ind.bounces);
           append_uint(out, ind.penetrations);
           append_float(out, ind.path_length);
           append_float(out, ind.intensity);
           append_float(out, ind.size);
-          append_float(out, ind.color.x);
-          append_float(out, ind.color.y);
-          append_float(out, ind.color.z);
-          append_float(out, ind.dir.x);
-          append_float(out, ind.dir.y);
-          append_float(out, ind.dir.z);
+          append_vec3(out, ind.color);
+          append_vec3(out, ind.dir);
           append_uint(out, ind.diffractions);
           append_float(out, ind.heard_energy);
-          append_float(out, ind.arrival.x);
-          append_float(out, ind.arrival.y);
-          append_float(out, ind.arrival.z);
+          append_vec3(out, ind.arrival);
           append_float(out, ind.toward);
           out.back() = '\n';
         }

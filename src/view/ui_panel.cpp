@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "soundpaint/result.h"
+#include "vk/context.h"
 #include "vk/vk_check.h"
 
 namespace sp::view {
@@ -92,11 +93,10 @@ Shape shape_of(const DisplaySettings& display, const std::string& category) {
 
 }  // namespace
 
-UiPanel::UiPanel(GLFWwindow* window, VkInstance instance, VkPhysicalDevice physical_device, VkDevice device,
-                 std::uint32_t queue_family, VkQueue queue, VkFormat color_format, std::uint32_t image_count,
+UiPanel::UiPanel(GLFWwindow* window, vk::Context& context, VkFormat color_format, std::uint32_t image_count,
                  const std::vector<VkImageView>& views, VkExtent2D extent)
     // ImGui wants at least two; its buffer sets are reused after this many frames.
-    : device_(device), image_count_(std::max(image_count, 2u)) {
+    : device_(context.device()), image_count_(std::max(image_count, 2u)) {
   if (ImGui::GetCurrentContext() != nullptr)
     throw Exception(ErrorCode::InvalidArgument, "UiPanel: one at a time (ImGui's context is process-wide)");
   g_first_failure = VK_SUCCESS;
@@ -191,11 +191,11 @@ UiPanel::UiPanel(GLFWwindow* window, VkInstance instance, VkPhysicalDevice physi
   glfw_backend_ = [] { ImGui_ImplGlfw_Shutdown(); };
 
   ImGui_ImplVulkan_InitInfo init{};
-  init.Instance = instance;
-  init.PhysicalDevice = physical_device;
+  init.Instance = context.instance();
+  init.PhysicalDevice = context.physical_device();
   init.Device = device_;
-  init.QueueFamily = queue_family;
-  init.Queue = queue;
+  init.QueueFamily = context.queue_family();
+  init.Queue = context.queue();
   init.PipelineCache = VK_NULL_HANDLE;
   init.DescriptorPool = pool_.get();
   init.Subpass = 0;
@@ -210,7 +210,7 @@ UiPanel::UiPanel(GLFWwindow* window, VkInstance instance, VkPhysicalDevice physi
   vulkan_backend_ = [] { ImGui_ImplVulkan_Shutdown(); };
   if (!initialised) throw Exception(ErrorCode::Vulkan, "UiPanel: ImGui_ImplVulkan_Init failed");
   throw_if_failed("UiPanel: ImGui_ImplVulkan_Init");
-  upload_fonts(queue_family, queue);
+  upload_fonts(context);
 }
 
 UiPanel::~UiPanel() = default;
@@ -234,44 +234,13 @@ void UiPanel::create_framebuffers(const std::vector<VkImageView>& views, VkExten
   }
 }
 
-// The font atlas goes to the GPU once, on a command buffer of its own that
-// the fence says is done before the staging buffer is freed.
-void UiPanel::upload_fonts(std::uint32_t queue_family, VkQueue queue) {
-  VkCommandPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool_info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool_info.queueFamilyIndex = queue_family;
-  VkCommandPool raw_pool = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateCommandPool(device_, &pool_info, nullptr, &raw_pool));
-  const vk::UniqueCommandPool command_pool(device_, raw_pool);
-
-  VkCommandBufferAllocateInfo alloc{};
-  alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  alloc.commandPool = command_pool.get();
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;  // freed with its pool
-  SP_VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
-  VkCommandBufferBeginInfo begin{};
-  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  SP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  const bool recorded = ImGui_ImplVulkan_CreateFontsTexture(cmd);
+// The font atlas goes to the GPU once; the wait says it is done before the
+// staging buffer is freed.
+void UiPanel::upload_fonts(vk::Context& context) {
+  bool recorded = false;
+  context.submit_and_wait([&](VkCommandBuffer cmd) { recorded = ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   throw_if_failed("UiPanel: ImGui_ImplVulkan_CreateFontsTexture");
   if (!recorded) throw Exception(ErrorCode::Vulkan, "UiPanel: ImGui_ImplVulkan_CreateFontsTexture failed");
-  SP_VK_CHECK(vkEndCommandBuffer(cmd));
-
-  VkFenceCreateInfo fence_info{};
-  fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  VkFence raw_fence = VK_NULL_HANDLE;
-  SP_VK_CHECK(vkCreateFence(device_, &fence_info, nullptr, &raw_fence));
-  const vk::UniqueFence fence(device_, raw_fence);
-  VkSubmitInfo submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  SP_VK_CHECK(vkQueueSubmit(queue, 1, &submit, raw_fence));
-  SP_VK_CHECK(vkWaitForFences(device_, 1, &raw_fence, VK_TRUE, UINT64_MAX));
   ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
 

@@ -21,6 +21,10 @@
 
 struct GLFWwindow;
 
+namespace sp::vk {
+class Context;
+}  // namespace sp::vk
+
 namespace sp::view {
 
 // What the panel shows; the viewer fills it in before build().
@@ -71,8 +75,8 @@ class UiPanel {
   // through, one per recorded frame: it must be at least the frames in
   // flight. Throws sp::Exception(ErrorCode::Vulkan) on failure,
   // (ErrorCode::InvalidArgument) if another panel exists.
-  UiPanel(GLFWwindow* window, VkInstance instance, VkPhysicalDevice physical_device, VkDevice device,
-          std::uint32_t queue_family, VkQueue queue, VkFormat color_format, std::uint32_t image_count,
+  // `context` must be an owned one (the fonts go up on its queue).
+  UiPanel(GLFWwindow* window, vk::Context& context, VkFormat color_format, std::uint32_t image_count,
           const std::vector<VkImageView>& views, VkExtent2D extent);
   // vkDeviceWaitIdle is the caller's job: destroys everything the panel made
   // and shuts ImGui down.
@@ -127,7 +131,7 @@ class UiPanel {
   using UniqueFramebuffer = vk::DeviceObject<VkFramebuffer, vkDestroyFramebuffer>;
 
   void create_framebuffers(const std::vector<VkImageView>& views, VkExtent2D extent);
-  void upload_fonts(std::uint32_t queue_family, VkQueue queue);
+  void upload_fonts(vk::Context& context);
   void build_display(PanelState& state, const std::vector<std::string>& categories, PanelActions& actions);
 
   VkDevice device_ = VK_NULL_HANDLE;
