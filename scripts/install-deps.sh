@@ -8,7 +8,8 @@
 # bench_rays' Embree comparison. `install-deps.sh openal` adds OpenAL Soft
 # (libopenal-dev), for the optional OpenAL adapter soundpaint::openal and
 # its trace shim; `sounds` adds sox and espeak-ng, which make the sounds of
-# examples/openal. Extras combine: `install-deps.sh fuzz embree`.
+# examples/openal; `ccache` adds ccache, which the test builds compile
+# through when it is there. Extras combine: `install-deps.sh fuzz embree`.
 set -euo pipefail
 
 packages=(
@@ -24,8 +25,9 @@ for extra in "$@"; do
     embree) packages+=(libembree-dev) ;;
     openal) packages+=(libopenal-dev) ;;
     sounds) packages+=(sox espeak-ng) ;;
+    ccache) packages+=(ccache) ;;
     *)
-      echo "install-deps.sh: unknown extra '$extra' (fuzz, embree, openal, sounds)" >&2
+      echo "install-deps.sh: unknown extra '$extra' (fuzz, embree, openal, sounds, ccache)" >&2
       exit 2
       ;;
   esac
