@@ -14,9 +14,8 @@
 #
 # Assertions (no NDEBUG, _GLIBCXX_ASSERTIONS) run in scripts/test.sh's
 # sanitized build, which replaced the separate assertion build (issue 36).
-# Left out, as scripts/test.sh's build runs them: the benchmarks' smoke runs
-# and the tests labelled "consumer" (packaging, not the compiler). The
-# examples stay in: the tests run the example host.
+# Left out, as scripts/test.sh's build runs them: the benchmarks' smoke runs;
+# and, as everywhere but scripts/nightly.sh, the tests labelled "nightly".
 #
 # BUILD_PREFIX (default "build-") names the folder: BUILD_PREFIX=/tmp/build-
 # builds into /tmp/build-clang.
@@ -33,16 +32,16 @@ for stage in "${stages[@]}"; do
     clang)
       start=$SECONDS
       dir="${prefix}clang"
-      echo "== clang -Werror, with Embree and scalar SIMD lanes ($dir/)"
+      echo "== clang -Werror, shared, with Embree and scalar SIMD lanes ($dir/)"
       # clang (and the runtimes fuzz.sh needs anyway), and Embree: this stage
       # also builds the CPU backend's optional Embree traversal, so that its
       # tests run (test_cpu_traversal, and the physics tests' CpuEmbree cases).
       bash scripts/install-deps.sh fuzz embree
       cmake -S . -B "$dir" "${sp_launcher[@]}" -DSOUNDPAINT_WERROR=ON -DSOUNDPAINT_BUILD_BENCH=OFF \
         -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSOUNDPAINT_EMBREE=ON \
-        -DSOUNDPAINT_SIMD=scalar >/dev/null
+        -DSOUNDPAINT_SIMD=scalar -DBUILD_SHARED_LIBS=ON >/dev/null
       cmake --build "$dir" -j"$jobs"
-      ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 600 --label-exclude consumer
+      ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 600 --label-exclude nightly
       echo "== clang: $((SECONDS - start)) s"
       ;;
     *)

@@ -103,6 +103,52 @@ static int scene_controls(sp_simulation* simulation) {
   return 0;
 }
 
+/* The context API from C: the version, a context with a thread cap, a
+ * scene loaded and a simulation created in it, its per-layer counters. */
+static int context_in_c(void) {
+  sp_context_settings settings;
+  sp_simulation_options options;
+  sp_context* context = NULL;
+  sp_scene* scene = NULL;
+  sp_simulation* simulation = NULL;
+  sp_layer_stats layers[8];
+  uint32_t layer_count = 0;
+  uint32_t threads = 0;
+  uint64_t hits = 0;
+  uint32_t k;
+  sp_result r;
+
+  if (sp_get_version() != SOUNDPAINT_VERSION) {
+    fprintf(stderr, "test_capi_c: sp_get_version() is not SOUNDPAINT_VERSION\n");
+    return 1;
+  }
+  sp_context_settings_init(&settings);
+  settings.max_threads = 1;
+  r = sp_context_create(&settings, &context);
+  if (r != SP_OK) return failed("sp_context_create", r);
+  r = sp_scene_load_in(context, SP_SCENES_DIR "/closed_room.gltf", NULL, &scene);
+  if (r != SP_OK) return failed("sp_scene_load_in", r);
+  sp_simulation_options_init(&options);
+  options.backend = SP_BACKEND_CPU;
+  r = sp_simulation_create_in(context, scene, "{ \"ray_budget\": 100 }", &options, &simulation);
+  sp_scene_destroy(scene);
+  sp_context_destroy(context); /* the simulation keeps it */
+  if (r != SP_OK) return failed("sp_simulation_create_in", r);
+  r = sp_simulation_step(simulation);
+  if (r == SP_OK) r = sp_simulation_thread_count(simulation, &threads);
+  if (r == SP_OK) r = sp_simulation_layer_stats(simulation, layers, 8, &layer_count);
+  sp_simulation_destroy(simulation);
+  if (r != SP_OK) return failed("a context's simulation", r);
+  for (k = 0; k < layer_count && k < 8; ++k) hits += layers[k].hits;
+  /* A closed room: each of the 100 rays hits a wall at least once. */
+  if (threads != 1 || layer_count == 0 || hits < 100) {
+    fprintf(stderr, "test_capi_c: %u threads, %u layers, %llu hits\n", (unsigned)threads, (unsigned)layer_count,
+            (unsigned long long)hits);
+    return 1;
+  }
+  return 0;
+}
+
 int main(void) {
   const char* config = "{ \"ray_budget\": 100, \"seed\": 7 }";
   sp_scene* scene = NULL;
@@ -117,6 +163,7 @@ int main(void) {
   int status = 1;
   sp_result r;
 
+  if (context_in_c() != 0) return 1;
   r = sp_scene_load(SP_SCENES_DIR "/closed_room.gltf", &scene);
   if (r != SP_OK) return failed("sp_scene_load", r);
   r = sp_simulation_create(scene, config, SP_BACKEND_CPU, &simulation);

@@ -121,6 +121,41 @@ TEST_F(CapiHost, GpuBackendRecordsTheStepsThatFitTheFrame) {
   EXPECT_EQ(steps_run(), 3u);
 }
 
+// sp_visualizer_options.max_steps_per_frame: a frame of 0.25 s holds two
+// steps of 0.1 s, and a cap of 1 records one and drops the rest (nothing
+// carried: the next empty frame records none). Created in a context whose
+// log must stay silent, Vulkan validation relayed to it included.
+TEST_F(CapiHost, VisualizerOptionsCapTheStepsOfAFrame) {
+  std::vector<std::string> messages;
+  sp_context_settings settings;
+  sp_context_settings_init(&settings);
+  settings.flags = SP_CONTEXT_VULKAN_VALIDATION;
+  settings.log_user_data = &messages;
+  settings.log = [](void* user_data, sp_log_level, const char* message) {
+    static_cast<std::vector<std::string>*>(user_data)->emplace_back(message);
+  };
+  sp_context* context = nullptr;
+  ASSERT_EQ(sp_context_create(&settings, &context), SP_OK) << last_error();
+  sp_visualizer_options options;
+  sp_visualizer_options_init(&options);
+  EXPECT_EQ(options.max_steps_per_frame, 4u);  // sp_visualizer_create's
+  options.backend = SP_BACKEND_GPU;
+  options.max_steps_per_frame = 1;
+  const sp_host_vulkan h = host();
+  const sp_draw_target t = target();
+  ASSERT_EQ(sp_visualizer_create_in(context, &h, &t, scene_, kConfig, &options, &vis_), SP_OK) << last_error();
+  EXPECT_EQ(sp_context_destroy(context), SP_OK);  // the visualizer keeps it
+  EXPECT_EQ(frame(0.25), 1u);
+  EXPECT_EQ(frame(0.0), 0u);
+  EXPECT_EQ(steps_run(), 1u);
+
+  sp_visualizer* refused = nullptr;
+  options.max_steps_per_frame = 0;
+  EXPECT_EQ(sp_visualizer_create_in(nullptr, &h, &t, scene_, kConfig, &options, &refused), SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("context is NULL"), std::string::npos) << last_error();
+  EXPECT_TRUE(messages.empty()) << messages.front();
+}
+
 // The scene controls act on a visualizer's scene like on a simulation's;
 // the recorded steps pick the changes up without validation messages.
 TEST_F(CapiHost, SceneControlsWorkOnAVisualizer) {

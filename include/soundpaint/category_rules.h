@@ -11,6 +11,10 @@
 #include <vector>
 
 #include "soundpaint/result.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -44,3 +48,5 @@ class CategoryRules {
 bool wildcard_match(std::string_view pattern, std::string_view name);
 
 }  // namespace sp
+
+SP_CPP_API_END

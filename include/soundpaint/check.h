@@ -13,6 +13,10 @@
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
 #include "soundpaint/simulation.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -117,3 +121,5 @@ std::string penetration_warning(const PenetrationProbe& probe);
 std::string work_bound_warning(const PenetrationProbe& probe);
 
 }  // namespace sp
+
+SP_CPP_API_END

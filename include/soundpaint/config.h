@@ -16,6 +16,10 @@
 #include "soundpaint/display.h"
 #include "soundpaint/math.h"
 #include "soundpaint/result.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -176,3 +180,5 @@ const std::map<std::string, LayerProperties>& layer_presets();
 LayerProperties resolve_layer(const Config& config, std::string_view layer_name);
 
 }  // namespace sp
+
+SP_CPP_API_END

@@ -15,6 +15,10 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -93,3 +97,5 @@ struct DisplaySettings {
 };
 
 }  // namespace sp
+
+SP_CPP_API_END

@@ -6,6 +6,10 @@
 #pragma once
 
 #include <concepts>
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -78,3 +82,5 @@ struct Mat4 {
 };
 
 }  // namespace sp
+
+SP_CPP_API_END

@@ -9,6 +9,10 @@
 #include "soundpaint/math.h"
 #include "soundpaint/result.h"
 #include "soundpaint/simulation.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -31,3 +35,5 @@ Result<std::optional<RayHit>> cast_ray(const World& world, const Vec3& origin, c
                                        float max_distance = 1.0e30f);
 
 }  // namespace sp
+
+SP_CPP_API_END

@@ -6,6 +6,10 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -84,3 +88,5 @@ auto capture_errors(Fn&& fn, ErrorCode fallback = ErrorCode::InvalidArgument) ->
 }
 
 }  // namespace sp
+
+SP_CPP_API_END

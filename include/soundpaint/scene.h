@@ -12,6 +12,10 @@
 #include "soundpaint/config.h"
 #include "soundpaint/math.h"
 #include "soundpaint/result.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -92,3 +96,5 @@ Result<Scene> load_scene(const std::filesystem::path& path, const SceneLoadOptio
 Result<Scene> load_scene(const std::filesystem::path& path);
 
 }  // namespace sp
+
+SP_CPP_API_END

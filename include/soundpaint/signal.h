@@ -13,6 +13,10 @@
 
 #include "soundpaint/config.h"
 #include "soundpaint/result.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -68,3 +72,5 @@ double signal_gain(double level_db, const SignalSettings& law);
 double rms_level_db(std::span<const float> samples);
 
 }  // namespace sp
+
+SP_CPP_API_END

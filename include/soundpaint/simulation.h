@@ -14,6 +14,10 @@
 #include "soundpaint/math.h"
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -434,6 +438,10 @@ class Simulator {
   // the thread count for the CPU backend.
   virtual std::string device_description() const = 0;
 
+  // Threads that cast rays: the CPU backend's pool, the calling thread
+  // included (CpuSettings::threads, or one per core); 0 for the GPU backend.
+  virtual std::uint32_t thread_count() const { return 0; }
+
   // Sources, listener and moving parts, changed between steps.
   virtual SoundScene& scene() = 0;
   virtual const SoundScene& scene() const = 0;
@@ -506,3 +514,5 @@ Result<std::unique_ptr<Simulator>> create_simulator(World world, const Simulator
 float indicator_opacity(const Indicator& indicator, double age_seconds, float lifetime_seconds);
 
 }  // namespace sp
+
+SP_CPP_API_END

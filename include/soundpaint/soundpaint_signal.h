@@ -28,27 +28,28 @@ typedef struct sp_signal sp_signal;
 /* From interleaved PCM: `count` samples (a multiple of `channels`, 1 to 8)
  * at `sample_rate` Hz in [1000, 768000]. Errors: SP_ERROR_INVALID_ARGUMENT
  * naming the problem (no samples, a bad rate, a non-finite sample). */
-sp_result sp_signal_create_f32(const float* samples, uint64_t count, double sample_rate, uint32_t channels,
-                               sp_signal** out) SP_NOEXCEPT;
-sp_result sp_signal_create_s16(const int16_t* samples, uint64_t count, double sample_rate, uint32_t channels,
-                               sp_signal** out) SP_NOEXCEPT;
+SP_API sp_result sp_signal_create_f32(const float* samples, uint64_t count, double sample_rate, uint32_t channels,
+                                      sp_signal** out) SP_NOEXCEPT;
+SP_API sp_result sp_signal_create_s16(const int16_t* samples, uint64_t count, double sample_rate, uint32_t channels,
+                                      sp_signal** out) SP_NOEXCEPT;
 /* From an envelope computed elsewhere: `count` levels in dB re full scale
  * (-INFINITY for silence), one per `hop_seconds` in [0.0005, 1]. */
-sp_result sp_signal_create_levels(const float* levels_db, uint64_t count, double hop_seconds,
-                                  sp_signal** out) SP_NOEXCEPT;
+SP_API sp_result sp_signal_create_levels(const float* levels_db, uint64_t count, double hop_seconds,
+                                         sp_signal** out) SP_NOEXCEPT;
 /* Destroys a signal; NULL is a no-op. Sources it was attached to keep it. */
-sp_result sp_signal_destroy(sp_signal* signal) SP_NOEXCEPT;
+SP_API sp_result sp_signal_destroy(sp_signal* signal) SP_NOEXCEPT;
 /* Seconds of sound. */
-sp_result sp_signal_duration(const sp_signal* signal, double* out_seconds) SP_NOEXCEPT;
+SP_API sp_result sp_signal_duration(const sp_signal* signal, double* out_seconds) SP_NOEXCEPT;
 /* The level of [position, position + window) seconds, as the simulation
  * reads it (past the end: silence, or the start again with `loop` != 0);
  * -INFINITY for silence. */
-sp_result sp_signal_level_db(const sp_signal* signal, double position, double window, int loop,
-                             double* out_db) SP_NOEXCEPT;
+SP_API sp_result sp_signal_level_db(const sp_signal* signal, double position, double window, int loop,
+                                    double* out_db) SP_NOEXCEPT;
 
 /* Attaches the sound source `id` plays (NULL detaches: E0 is its loudness
  * again); `loop` != 0 repeats it. Any thread, applied at the next step. */
-sp_result sp_sound_scene_set_signal(sp_sound_scene* scene, uint32_t id, const sp_signal* signal, int loop) SP_NOEXCEPT;
+SP_API sp_result sp_sound_scene_set_signal(sp_sound_scene* scene, uint32_t id, const sp_signal* signal,
+                                           int loop) SP_NOEXCEPT;
 
 /* What an audio engine knows of one voice (sp_sound_scene_set_voice).
  * Fill it with sp_voice_state_init first. */
@@ -60,21 +61,21 @@ typedef struct sp_voice_state {
 } sp_voice_state;
 
 /* Defaults: at the origin, stopped, gain 1, position kept. NULL: no-op. */
-void sp_voice_state_init(sp_voice_state* state) SP_NOEXCEPT;
+SP_API void sp_voice_state_init(sp_voice_state* state) SP_NOEXCEPT;
 
 /* A voice is a source whose playing the engine tells: add it with
  * duration 0 (silent by pattern), then give its state once a frame or
  * whenever it changes. Any thread (the audio thread included). */
-sp_result sp_sound_scene_set_voice(sp_sound_scene* scene, uint32_t id, const sp_voice_state* state) SP_NOEXCEPT;
+SP_API sp_result sp_sound_scene_set_voice(sp_sound_scene* scene, uint32_t id, const sp_voice_state* state) SP_NOEXCEPT;
 /* The level of what the voice plays now, dB re full scale before its gain;
  * holds until the next, overriding its signal. -INFINITY: silence; NaN:
  * back to the signal. Any thread. */
-sp_result sp_sound_scene_set_voice_level(sp_sound_scene* scene, uint32_t id, double level_db) SP_NOEXCEPT;
+SP_API sp_result sp_sound_scene_set_voice_level(sp_sound_scene* scene, uint32_t id, double level_db) SP_NOEXCEPT;
 /* sp_sound_scene_set_voice_level with the RMS level of `count` interleaved
  * float samples (full scale 1): one call per block a DSP callback
  * processes. Any thread. */
-sp_result sp_sound_scene_feed_voice(sp_sound_scene* scene, uint32_t id, const float* samples,
-                                    uint64_t count) SP_NOEXCEPT;
+SP_API sp_result sp_sound_scene_feed_voice(sp_sound_scene* scene, uint32_t id, const float* samples,
+                                           uint64_t count) SP_NOEXCEPT;
 
 #ifdef __cplusplus
 }

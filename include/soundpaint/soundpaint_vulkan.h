@@ -56,7 +56,8 @@ typedef struct sp_host_vulkan {
   const void* enabled_features;
 } sp_host_vulkan;
 
-/* The attachments of the host's rendering that record_draw draws into. */
+/* The attachments of the host's rendering that record_draw draws into.
+ * Fixed forever (sp::DrawTarget bit for bit). */
 typedef struct sp_draw_target {
   VkFormat color_format;         /* required: a blendable colour attachment format */
   VkFormat depth_format;         /* VK_FORMAT_UNDEFINED (default): no depth attachment, indicators not depth-tested */
@@ -70,8 +71,8 @@ typedef struct sp_draw_target {
 /* Fill *host / *target (NULL: no-op) with the defaults: null handles,
  * VK_QUEUE_FAMILY_IGNORED families, UNDEFINED formats, one sample,
  * LESS_OR_EQUAL. Set the required fields afterwards. Thread-safe. */
-void sp_host_vulkan_init(sp_host_vulkan* host) SP_NOEXCEPT;
-void sp_draw_target_init(sp_draw_target* target) SP_NOEXCEPT;
+SP_API void sp_host_vulkan_init(sp_host_vulkan* host) SP_NOEXCEPT;
+SP_API void sp_draw_target_init(sp_draw_target* target) SP_NOEXCEPT;
 
 /* Creates a visualizer of `scene` on the host's device.
  * host, target: non-NULL, only read during the call (the Vulkan handles they
@@ -92,34 +93,63 @@ void sp_draw_target_init(sp_draw_target* target) SP_NOEXCEPT;
  * objects still hold (an externally synchronised pipeline cache, say).
  * Builds the BVH and the pipelines; uploads happen in the first
  * sp_visualizer_record_simulation. */
-sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,
-                               const char* config_json, sp_backend backend, sp_visualizer** out) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,
+                                      const char* config_json, sp_backend backend, sp_visualizer** out) SP_NOEXCEPT;
+
+/* What sp_visualizer_create_in takes beyond the scene and config (the C
+ * counterpart of sp::VisualizerSettings). Sized: fill it with
+ * sp_visualizer_options_init first. */
+typedef struct sp_visualizer_options {
+  uint32_t struct_size;         /* sizeof(sp_visualizer_options), set by _init */
+  sp_backend backend;           /* default SP_BACKEND_AUTO */
+  uint64_t memory_budget_bytes; /* as sp_simulation_options (CPU backend); default 2 GiB, > 0 */
+  /* CPU backend: worker threads, as sp_simulation_options.threads (capped
+   * by the context's max_threads); 0 (default): the context's cap. */
+  uint32_t threads;
+  /* Steps one sp_visualizer_record_simulation may record when frames are
+   * long; game time beyond them is dropped, not carried (no spiral of
+   * death). > 0; default 4. */
+  uint32_t max_steps_per_frame;
+} sp_visualizer_options;
+
+/* Fills *options (NULL: no-op) with the defaults of sp_visualizer_create. */
+SP_API void sp_visualizer_options_init(sp_visualizer_options* options) SP_NOEXCEPT;
+
+/* sp_visualizer_create in `context` (non-NULL, live), with options (NULL:
+ * the defaults; a bad struct_size, memory_budget_bytes 0 or
+ * max_steps_per_frame 0 are SP_ERROR_INVALID_ARGUMENT): the handle from the
+ * context's allocator, the CPU backend's threads capped by its max_threads,
+ * a failure's message also to its log. Otherwise as sp_visualizer_create. */
+SP_API sp_result sp_visualizer_create_in(sp_context* context, const sp_host_vulkan* host, const sp_draw_target* target,
+                                         const sp_scene* scene, const char* config_json,
+                                         const sp_visualizer_options* options, sp_visualizer** out) SP_NOEXCEPT;
 
 /* Destroys a visualizer and the Vulkan objects it created; its
  * sp_sound_scene stops being live. The host must first have finished every
  * command buffer recorded with it (a fence or vkDeviceWaitIdle). NULL is a
  * no-op (SP_OK). Errors: SP_ERROR_INVALID_ARGUMENT when not live. */
-sp_result sp_visualizer_destroy(sp_visualizer* visualizer) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_destroy(sp_visualizer* visualizer) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the visualizer's sound scene, borrowed: the same
  * pointer on every call, live until sp_visualizer_destroy. */
-sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the backend chosen at creation: SP_BACKEND_CPU
  * or SP_BACKEND_GPU (never AUTO). */
-sp_result sp_visualizer_backend(const sp_visualizer* visualizer, sp_backend* out) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_backend(const sp_visualizer* visualizer, sp_backend* out) SP_NOEXCEPT;
 
 /* Records the frame's simulation into `cmd` (non-NULL, recording, outside
  * any render pass; submitted by the host to queue_family or
  * compute_queue_family) for dt_seconds (finite, >= 0) of game time: as many
- * fixed steps of config "dt" as fit (at most 4 per call), the rest carried
- * to the next frame. Never waits on the device or on worker threads.
+ * fixed steps of config "dt" as fit (at most 4 per call, or
+ * sp_visualizer_options.max_steps_per_frame), the rest carried to the next
+ * frame. Never waits on the device or on worker threads.
  * out_steps: may be NULL; else receives the steps recorded (GPU backend) or
  * handed over (CPU backend) by this call.
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL cmd, bad dt),
  * SP_ERROR_VULKAN. */
-sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBuffer cmd, double dt_seconds,
-                                          uint32_t* out_steps) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBuffer cmd, double dt_seconds,
+                                                 uint32_t* out_steps) SP_NOEXCEPT;
 
 /* Records the indicator draw into `cmd` (non-NULL), inside the host's
  * dynamic rendering whose attachments match the sp_draw_target, after the
@@ -132,13 +162,13 @@ sp_result sp_visualizer_record_simulation(sp_visualizer* visualizer, VkCommandBu
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL cmd or matrix,
  * non-finite matrix, empty area, no record_simulation recorded yet),
  * SP_ERROR_VULKAN. */
-sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
-                                    const float projection[16], const VkRect2D* area) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_record_draw(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                           const float projection[16], const VkRect2D* area) SP_NOEXCEPT;
 
 /* What sp_visualizer_record_draw_ex needs beyond the host's matrices
- * (see sp::DrawOptions). Fill it with sp_draw_options_init first: later
- * versions may add fields. */
+ * (see sp::DrawOptions). Sized: fill it with sp_draw_options_init first. */
 typedef struct sp_draw_options {
+  uint32_t struct_size; /* sizeof(sp_draw_options), set by _init */
   /* NULL (the default): the viewport and scissor set in the command buffer
    * are used; else both are set to it (non-empty). Only read during the call. */
   const VkRect2D* area;
@@ -170,18 +200,18 @@ typedef struct sp_draw_options {
 
 /* Fills *options (NULL: no-op) with the defaults: no area, 0 x 0 at 0, 0,
  * no scene depth. Thread-safe. */
-void sp_draw_options_init(sp_draw_options* options) SP_NOEXCEPT;
+SP_API void sp_draw_options_init(sp_draw_options* options) SP_NOEXCEPT;
 
 /* sp_visualizer_record_draw with the display's options (*options non-NULL,
- * every field checked): clipping to surfaces, and the viewport size that the
+ * struct_size and every field checked): clipping to surfaces, and the viewport size that the
  * minimum spot size and off-screen arrows need. Off-screen arrows are drawn
  * when the display settings ask for them and the viewport size is known.
  * Errors: as sp_visualizer_record_draw, plus SP_ERROR_INVALID_ARGUMENT
  * naming the field (NULL options, one viewport side 0, a size unlike the
  * area's, an origin unlike the area's, a size, origin or area past 65535,
  * a negative area offset, scene_depth below -1 or not a registered view). */
-sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
-                                       const float projection[16], const sp_draw_options* options) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffer cmd, const float view[16],
+                                              const float projection[16], const sp_draw_options* options) SP_NOEXCEPT;
 
 /* How the indicators are drawn from now on (initially the config's
  * "display"): *settings (non-NULL, filled by sp_display_settings_init and
@@ -193,7 +223,7 @@ sp_result sp_visualizer_record_draw_ex(sp_visualizer* visualizer, VkCommandBuffe
  * not -1, 0 or 1, a non-finite or out-of-range number, a NULL array with a
  * count above 0, a NULL or empty category, a category given two shapes);
  * on error nothing changes. */
-sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_settings* settings) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_settings* settings) SP_NOEXCEPT;
 
 /* Registers the depth image views that sp_draw_options.scene_depth indexes
  * (e.g. one per swapchain image), replacing earlier ones; count 0 (views
@@ -206,18 +236,18 @@ sp_result sp_visualizer_set_display(sp_visualizer* visualizer, const sp_display_
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live, NULL views with a
  * count above 0, a VK_NULL_HANDLE view, named by index),
  * SP_ERROR_LIMIT_EXCEEDED (count above 8), SP_ERROR_VULKAN. */
-sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImageView* views,
-                                        uint32_t count) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_set_scene_depth(sp_visualizer* visualizer, const VkImageView* views,
+                                               uint32_t count) SP_NOEXCEPT;
 
 /* Blocks until the CPU backend's step in progress (if any) is finished, so
  * that the next record_simulation hands it over. For loading screens,
  * shutdown and tests; never needed in a frame. No-op for the GPU backend.
  * Errors: SP_ERROR_INVALID_ARGUMENT (NULL or not live). */
-sp_result sp_visualizer_wait(sp_visualizer* visualizer) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_wait(sp_visualizer* visualizer) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the steps whose indicators record_draw draws
  * (recorded for the GPU backend, finished and handed over for the CPU one). */
-sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) SP_NOEXCEPT;
+SP_API sp_result sp_visualizer_steps_run(const sp_visualizer* visualizer, uint64_t* out) SP_NOEXCEPT;
 
 #ifdef __cplusplus
 } /* extern "C" */

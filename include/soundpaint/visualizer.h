@@ -13,6 +13,10 @@
 #include <vulkan/vulkan.h>
 
 #include "soundpaint/simulation.h"
+#include "soundpaint/export.h"
+
+// Exported from a shared libsoundpaint (export.h).
+SP_CPP_API_BEGIN
 
 namespace sp {
 
@@ -260,3 +264,5 @@ class Visualizer {
 };
 
 }  // namespace sp
+
+SP_CPP_API_END

@@ -113,10 +113,24 @@ BackendChoice backend_choice(sp_backend backend, const char* function) {
   throw_invalid(function, "backend must be SP_BACKEND_CPU, SP_BACKEND_GPU or SP_BACKEND_AUTO");
 }
 
-World world_from(const sp_scene& scene, const char* config_json) {
+World world_from(const sp_scene& scene, const char* config_json, const WorldOptions& options) {
   Config config;
   if (config_json != nullptr) config = unwrap(parse_config(config_json, "config_json"));
-  return unwrap(sp::make_world(scene.scene, config));
+  if (options.ray_budget != 0) config.ray_budget = options.ray_budget;
+  BvhBuildSettings bvh;
+  bvh.threads = options.threads;
+  return unwrap(sp::make_world(scene.scene, config, bvh));
+}
+
+unsigned thread_count(const sp_context& context, std::uint32_t requested) {
+  if (context.max_threads == 0) return requested;
+  if (requested == 0) return context.max_threads;
+  return requested < context.max_threads ? requested : context.max_threads;
+}
+
+sp_context& context_of(sp_context* context, const char* function) {
+  require_live(HandleKind::Context, context, function, "context");
+  return *context;
 }
 
 }  // namespace sp::capi

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "capi/context.h"
 #include "soundpaint/config.h"
 #include "soundpaint/result.h"
 #include "soundpaint/scene.h"
@@ -60,7 +61,9 @@ class OneThreadAtATime {
 
 }  // namespace sp::capi
 
+// Every handle holds its context (context.h), whose allocator gave its memory.
 struct sp_scene {
+  sp::capi::ContextRef context;
   sp::Scene scene;
 };
 
@@ -71,6 +74,7 @@ struct sp_sound_scene {
 };
 
 struct sp_simulation {
+  sp::capi::ContextRef context;
   std::unique_ptr<sp::Simulator> simulator;
   sp_sound_scene sound_scene;
   sp::capi::OneThreadAtATime stepping;  // step, live_indicators, stats, destroy
@@ -115,11 +119,24 @@ sp_result guarded(Fn&& body) noexcept {
   }
 }
 
+// guarded(), and a failure also goes to `context`'s log when the body set
+// it (to the context of the call, or of the handle once found live).
+template <class Fn>
+sp_result guarded_in(sp_context* const& context, Fn&& body) noexcept {
+  const sp_result result = guarded(std::forward<Fn>(body));
+  if (result != SP_OK && context != nullptr) log(*context, SP_LOG_ERROR, sp_last_error_message());
+  return result;
+}
+
+// The context a *_in call names: NULL is refused (the entry points without
+// `_in` use the default context), a context not live too.
+sp_context& context_of(sp_context* context, const char* function);
+
 // --- Live handles ---
 // Each kind has its own set, so a sound scene that is a simulation's member
 // never collides with another kind of handle at the same address.
-enum class HandleKind { Scene, Simulation, Visualizer, SoundScene, Signal };
-inline constexpr int kHandleKinds = 5;
+enum class HandleKind { Scene, Simulation, Visualizer, SoundScene, Signal, Context };
+inline constexpr int kHandleKinds = 6;
 
 // Makes `handle` live, with the sound scene it owns (if any) live with it.
 // Throws std::bad_alloc, registering nothing.
@@ -140,7 +157,7 @@ void destroy_handle(HandleKind kind, T* handle, const char* function, const char
   if (handle == nullptr) return;
   if (!unregister_handle(kind, handle))
     throw_invalid(function, std::string(what) + " handle is not live (destroyed or never created)");
-  delete handle;
+  delete_handle(handle);
 }
 
 // The backend, checked (the enum comes from C and may hold anything).
@@ -148,6 +165,15 @@ BackendChoice backend_choice(sp_backend backend, const char* function);
 
 // config_json (NULL: defaults) and scene resolved into a World, as both
 // sp_simulation_create and sp_visualizer_create start.
-World world_from(const sp_scene& scene, const char* config_json);
+// What a C caller's options change in the World it gets.
+struct WorldOptions {
+  unsigned threads = 0;          // of the BVH build; 0: one per core
+  std::uint32_t ray_budget = 0;  // replaces the config's; 0: the config's
+};
+World world_from(const sp_scene& scene, const char* config_json, const WorldOptions& options = {});
+
+// Threads a simulation of `context` may use: `requested` (0: as many as
+// the context allows) capped by the context's max_threads; 0: one per core.
+unsigned thread_count(const sp_context& context, std::uint32_t requested);
 
 }  // namespace sp::capi

@@ -130,6 +130,7 @@ DisplaySettings display_settings_from(const sp_display_settings& in, const char*
 
 DrawOptions draw_options_from(const sp_draw_options& in, const char* function) {
   const char* o = "options";
+  require_struct_size(in.struct_size, sizeof(sp_draw_options), function, o);
   DrawOptions out;
   out.area = in.area;
   if ((in.viewport_width == 0) != (in.viewport_height == 0))
@@ -192,6 +193,7 @@ void sp_draw_options_init(sp_draw_options* options) noexcept {
   if (options == nullptr) return;
   const sp::DrawOptions defaults;
   sp_draw_options out{};
+  out.struct_size = sizeof(sp_draw_options);
   out.area = defaults.area;
   out.viewport_width = defaults.viewport_width;
   out.viewport_height = defaults.viewport_height;

@@ -11,6 +11,7 @@
 #include "soundpaint/soundpaint_signal.h"
 
 struct sp_signal {
+  sp::capi::ContextRef context;  // the default one's allocator gave its memory
   std::shared_ptr<const sp::Signal> signal;
 };
 
@@ -33,7 +34,7 @@ const sp_signal& signal_of(const sp_signal* signal, const char* fn) {
 
 // Registers a new handle for `made` and stores it in *out.
 void hand_out(sp::Signal made, sp_signal** out) {
-  auto handle = std::make_unique<sp_signal>();
+  auto handle = sp::capi::make_handle<sp_signal>(sp::capi::default_context());
   handle->signal = std::make_shared<const sp::Signal>(std::move(made));
   sp::capi::register_handle(HandleKind::Signal, handle.get());
   *out = handle.release();

@@ -5,6 +5,7 @@
 #include "soundpaint/soundpaint.h"
 
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <utility>
@@ -12,11 +13,28 @@
 #include <glm/glm.hpp>
 
 #include "capi/capi_internal.h"
+#include "capi/validation_relay.h"
 #include "sp_types.h"
+
+// sp_indicator is fixed forever (soundpaint.h): these pin its layout, and
+// the consumer test checks the same numbers from the installed header.
+static_assert(sizeof(sp_indicator) == 108, "sp_indicator is fixed forever");
+static_assert(offsetof(sp_indicator, position) == 0 && offsetof(sp_indicator, normal) == 12 &&
+                  offsetof(sp_indicator, energy) == 24 && offsetof(sp_indicator, size) == 28 &&
+                  offsetof(sp_indicator, color) == 32 && offsetof(sp_indicator, intensity) == 44 &&
+                  offsetof(sp_indicator, kind) == 48 && offsetof(sp_indicator, source_id) == 52 &&
+                  offsetof(sp_indicator, bounces) == 56 && offsetof(sp_indicator, penetrations) == 60 &&
+                  offsetof(sp_indicator, path_length) == 64 && offsetof(sp_indicator, step) == 68 &&
+                  offsetof(sp_indicator, direction) == 72 && offsetof(sp_indicator, diffractions) == 84 &&
+                  offsetof(sp_indicator, heard_energy) == 88 && offsetof(sp_indicator, arrival) == 92 &&
+                  offsetof(sp_indicator, toward) == 104,
+              "sp_indicator is fixed forever");
+static_assert(sizeof(sp_stats) == 32 && sizeof(sp_layer_stats) == 48, "fixed forever");
 
 namespace {
 
 using sp::capi::guarded;
+using sp::capi::guarded_in;
 using sp::capi::HandleKind;
 using sp::capi::require;
 using sp::capi::require_live;
@@ -113,26 +131,24 @@ void copy_instances(const SceneArrays& in, const char* fn, sp::Scene& s) {
   s.instance_names.assign(in.instance_names, in.instance_names + in.instance_count);
 }
 
-sp_result create_scene(const SceneArrays& in, sp_scene** out, const char* fn) {
-  return guarded([&] {
-    require(in.vertices != nullptr, fn, "vertices is NULL");
-    require(in.triangle_layers != nullptr, fn, "triangle_layers is NULL");
-    require(in.layer_names != nullptr, fn, "layer_names is NULL");
-    require(out != nullptr, fn, "out is NULL");
-    require(in.triangle_count > 0, fn, "triangle_count is 0");
-    require(in.layer_count > 0, fn, "layer_count is 0");
-    require_names(in.layer_names, in.layer_count, fn, "layer_names");
-    if (in.instance_count > 0) {
-      require(in.triangle_instances != nullptr, fn, "triangle_instances is NULL but instance_count > 0");
-      require(in.instance_names != nullptr, fn, "instance_names is NULL but instance_count > 0");
-      require_names(in.instance_names, in.instance_count, fn, "instance_names");
-    }
-    auto scene = std::make_unique<sp_scene>();
-    copy_geometry(in, fn, scene->scene);
-    copy_instances(in, fn, scene->scene);
-    sp::capi::register_handle(HandleKind::Scene, scene.get());
-    *out = scene.release();
-  });
+void create_scene(sp_context& context, const SceneArrays& in, sp_scene** out, const char* fn) {
+  require(in.vertices != nullptr, fn, "vertices is NULL");
+  require(in.triangle_layers != nullptr, fn, "triangle_layers is NULL");
+  require(in.layer_names != nullptr, fn, "layer_names is NULL");
+  require(out != nullptr, fn, "out is NULL");
+  require(in.triangle_count > 0, fn, "triangle_count is 0");
+  require(in.layer_count > 0, fn, "layer_count is 0");
+  require_names(in.layer_names, in.layer_count, fn, "layer_names");
+  if (in.instance_count > 0) {
+    require(in.triangle_instances != nullptr, fn, "triangle_instances is NULL but instance_count > 0");
+    require(in.instance_names != nullptr, fn, "instance_names is NULL but instance_count > 0");
+    require_names(in.instance_names, in.instance_count, fn, "instance_names");
+  }
+  auto scene = sp::capi::make_handle<sp_scene>(context);
+  copy_geometry(in, fn, scene->scene);
+  copy_instances(in, fn, scene->scene);
+  sp::capi::register_handle(HandleKind::Scene, scene.get());
+  *out = scene.release();
 }
 
 }  // namespace
@@ -141,23 +157,40 @@ extern "C" {
 
 namespace {
 
-void load_scene_into(const char* path, const sp::SceneLoadOptions& options, sp_scene** out, const char* fn) {
+void load_scene_into(sp_context& context, const char* path, const sp::SceneLoadOptions& options, sp_scene** out,
+                     const char* fn) {
   require(path != nullptr, fn, "path is NULL");
   require(out != nullptr, fn, "out is NULL");
-  auto scene = std::make_unique<sp_scene>(sp_scene{unwrap(sp::load_scene(path, options))});
+  sp::Scene loaded = unwrap(sp::load_scene(path, options));
+  auto scene = sp::capi::make_handle<sp_scene>(context);
+  scene->scene = std::move(loaded);
   sp::capi::register_handle(HandleKind::Scene, scene.get());
   *out = scene.release();
+}
+
+// The C options, checked, as the C++ ones.
+sp::SceneLoadOptions to_cpp(const sp_scene_load_options& options, const char* fn) {
+  sp::capi::require_struct_size(options.struct_size, sizeof(sp_scene_load_options), fn, "options");
+  if ((options.flags & ~SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0)
+    throw_invalid(fn, "options->flags has unknown bits " + std::to_string(options.flags));
+  require(options.max_triangles > 0, fn, "options->max_triangles is 0");
+  sp::SceneLoadOptions converted;
+  converted.allow_external_uris = (options.flags & SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0;
+  converted.max_triangles = options.max_triangles;
+  return converted;
 }
 
 }  // namespace
 
 sp_result sp_scene_load(const char* path, sp_scene** out) noexcept {
-  return guarded([&] { load_scene_into(path, sp::SceneLoadOptions{}, out, "sp_scene_load"); });
+  return guarded(
+      [&] { load_scene_into(sp::capi::default_context(), path, sp::SceneLoadOptions{}, out, "sp_scene_load"); });
 }
 
 void sp_scene_load_options_init(sp_scene_load_options* options) noexcept {
   if (options == nullptr) return;
   *options = sp_scene_load_options{};
+  options->struct_size = sizeof(sp_scene_load_options);
   options->max_triangles = sp::SceneLoadOptions{}.max_triangles;
 }
 
@@ -165,20 +198,39 @@ sp_result sp_scene_load_with_options(const char* path, const sp_scene_load_optio
   return guarded([&] {
     const char* fn = "sp_scene_load_with_options";
     require(options != nullptr, fn, "options is NULL");
-    if ((options->flags & ~SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0)
-      throw_invalid(fn, "options->flags has unknown bits " + std::to_string(options->flags));
-    require(options->max_triangles > 0, fn, "options->max_triangles is 0");
-    sp::SceneLoadOptions converted;
-    converted.allow_external_uris = (options->flags & SP_SCENE_LOAD_ALLOW_EXTERNAL_URIS) != 0;
-    converted.max_triangles = options->max_triangles;
-    load_scene_into(path, converted, out, fn);
+    load_scene_into(sp::capi::default_context(), path, to_cpp(*options, fn), out, fn);
+  });
+}
+
+sp_result sp_scene_load_in(sp_context* context, const char* path, const sp_scene_load_options* options,
+                           sp_scene** out) noexcept {
+  sp_context* log_to = nullptr;
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_scene_load_in";
+    log_to = &sp::capi::context_of(context, fn);
+    const sp::SceneLoadOptions converted = options != nullptr ? to_cpp(*options, fn) : sp::SceneLoadOptions{};
+    load_scene_into(*log_to, path, converted, out, fn);
   });
 }
 
 sp_result sp_scene_create(const float* vertices, uint32_t triangle_count, const uint32_t* triangle_layers,
                           const char* const* layer_names, uint32_t layer_count, sp_scene** out) noexcept {
   const SceneArrays in{vertices, triangle_count, triangle_layers, layer_names, layer_count, nullptr, nullptr, 0};
-  return create_scene(in, out, "sp_scene_create");
+  return guarded([&] { create_scene(sp::capi::default_context(), in, out, "sp_scene_create"); });
+}
+
+sp_result sp_scene_create_in(sp_context* context, const float* vertices, uint32_t triangle_count,
+                             const uint32_t* triangle_layers, const char* const* layer_names, uint32_t layer_count,
+                             const uint32_t* triangle_instances, const char* const* instance_names,
+                             uint32_t instance_count, sp_scene** out) noexcept {
+  const SceneArrays in{vertices,    triangle_count,     triangle_layers, layer_names,
+                       layer_count, triangle_instances, instance_names,  instance_count};
+  sp_context* log_to = nullptr;
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_scene_create_in";
+    log_to = &sp::capi::context_of(context, fn);
+    create_scene(*log_to, in, out, fn);
+  });
 }
 
 sp_result sp_scene_create_with_instances(const float* vertices, uint32_t triangle_count,
@@ -188,7 +240,7 @@ sp_result sp_scene_create_with_instances(const float* vertices, uint32_t triangl
                                          sp_scene** out) noexcept {
   const SceneArrays in{vertices,    triangle_count,     triangle_layers, layer_names,
                        layer_count, triangle_instances, instance_names,  instance_count};
-  return create_scene(in, out, "sp_scene_create_with_instances");
+  return guarded([&] { create_scene(sp::capi::default_context(), in, out, "sp_scene_create_with_instances"); });
 }
 
 sp_result sp_scene_destroy(sp_scene* scene) noexcept {
@@ -197,20 +249,47 @@ sp_result sp_scene_destroy(sp_scene* scene) noexcept {
 
 namespace {
 
-void create_simulation(const sp_scene* scene, const char* config_json, const sp_simulation_options& options,
-                       sp_simulation** out, const char* fn) {
+// A memory budget, a ray budget and a device flag, checked.
+void check_options(const sp_simulation_options& options, const char* fn) {
+  sp::capi::require_struct_size(options.struct_size, sizeof(sp_simulation_options), fn, "options");
+  require(options.memory_budget_bytes > 0, fn, "options->memory_budget_bytes is 0");
+  if (options.ray_budget > sp::kMaxRayBudget)
+    throw_invalid(fn, "options->ray_budget is " + std::to_string(options.ray_budget) + ", more than 2^24");
+  require(options.allow_cpu_device == 0 || options.allow_cpu_device == 1, fn,
+          "options->allow_cpu_device must be 0 or 1");
+}
+
+void create_simulation(sp_context& context, const sp_scene* scene, const char* config_json,
+                       const sp_simulation_options& options, sp_simulation** out, const char* fn) {
   require_live(HandleKind::Scene, scene, fn, "scene");
   require(out != nullptr, fn, "out is NULL");
-  require(options.memory_budget_bytes > 0, fn, "options->memory_budget_bytes is 0");
+  check_options(options, fn);
+  const sp::capi::ValidationRelay relay(&context);
   sp::SimulatorSettings settings;
   settings.backend = sp::capi::backend_choice(options.backend, fn);
+  const unsigned threads = sp::capi::thread_count(context, options.threads);
+  settings.cpu.threads = threads;
   settings.cpu.memory_budget_bytes = options.memory_budget_bytes;
   settings.gpu.memory_budget_bytes = options.memory_budget_bytes;
-  auto simulation = std::make_unique<sp_simulation>();
-  simulation->simulator = unwrap(sp::create_simulator(sp::capi::world_from(*scene, config_json), settings));
+  settings.gpu.validation = (context.flags & SP_CONTEXT_VULKAN_VALIDATION) != 0;
+  if (options.device_name != nullptr) settings.gpu.device_name = options.device_name;
+  settings.gpu.allow_cpu_device = options.allow_cpu_device != 0;
+  sp::capi::WorldOptions world_options;
+  world_options.threads = threads;
+  world_options.ray_budget = options.ray_budget;
+  auto simulation = sp::capi::make_handle<sp_simulation>(context);
+  simulation->simulator =
+      unwrap(sp::create_simulator(sp::capi::world_from(*scene, config_json, world_options), settings));
   simulation->sound_scene.scene = &simulation->simulator->scene();
   sp::capi::register_handle(HandleKind::Simulation, simulation.get(), &simulation->sound_scene);
   *out = simulation.release();
+}
+
+// The context of a live simulation, for guarded_in (null otherwise: the
+// handle is not trusted until found live).
+sp_context* context_of(const sp_simulation* simulation) {
+  if (simulation == nullptr || !sp::capi::is_live(HandleKind::Simulation, simulation)) return nullptr;
+  return &*simulation->context;
 }
 
 }  // namespace
@@ -221,15 +300,17 @@ sp_result sp_simulation_create(const sp_scene* scene, const char* config_json, s
     sp_simulation_options options;
     sp_simulation_options_init(&options);
     options.backend = backend;
-    create_simulation(scene, config_json, options, out, "sp_simulation_create");
+    create_simulation(sp::capi::default_context(), scene, config_json, options, out, "sp_simulation_create");
   });
 }
 
 void sp_simulation_options_init(sp_simulation_options* options) noexcept {
   if (options == nullptr) return;
   *options = sp_simulation_options{};
+  options->struct_size = sizeof(sp_simulation_options);
   options->backend = SP_BACKEND_AUTO;
   options->memory_budget_bytes = sp::kDefaultMemoryBudgetBytes;
+  options->allow_cpu_device = sp::GpuSettings{}.allow_cpu_device ? 1 : 0;
 }
 
 sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* config_json,
@@ -237,12 +318,31 @@ sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* c
   return guarded([&] {
     const char* fn = "sp_simulation_create_with_options";
     require(options != nullptr, fn, "options is NULL");
-    create_simulation(scene, config_json, *options, out, fn);
+    create_simulation(sp::capi::default_context(), scene, config_json, *options, out, fn);
+  });
+}
+
+sp_result sp_simulation_create_in(sp_context* context, const sp_scene* scene, const char* config_json,
+                                  const sp_simulation_options* options, sp_simulation** out) noexcept {
+  sp_context* log_to = nullptr;
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_simulation_create_in";
+    log_to = &sp::capi::context_of(context, fn);
+    sp_simulation_options defaults;
+    sp_simulation_options_init(&defaults);
+    create_simulation(*log_to, scene, config_json, options != nullptr ? *options : defaults, out, fn);
   });
 }
 
 sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
-  return guarded([&] {
+  // Kept alive past the handle, for the log and the validation layer's
+  // messages of the teardown.
+  const sp::capi::ContextRef context = simulation != nullptr && context_of(simulation) != nullptr
+                                           ? simulation->context
+                                           : sp::capi::ContextRef(sp::capi::default_context());
+  const sp::capi::ValidationRelay relay(&*context);
+  sp_context* log_to = &*context;
+  return guarded_in(log_to, [&] {
     const char* fn = "sp_simulation_destroy";
     // Not while this handle's other thread steps or reads it (a call on its
     // sound scene meanwhile is the host's to prevent: soundpaint.h).
@@ -281,7 +381,9 @@ sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_id, doub
 }
 
 sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
-  return guarded([&] {
+  sp_context* log_to = context_of(simulation);
+  const sp::capi::ValidationRelay relay(log_to);
+  return guarded_in(log_to, [&] {
     const char* fn = "sp_simulation_step";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
     const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
@@ -300,7 +402,9 @@ sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* 
 
 sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator* out, uint32_t capacity,
                                         uint32_t* count) noexcept {
-  return guarded([&] {
+  sp_context* log_to = context_of(simulation);
+  const sp::capi::ValidationRelay relay(log_to);
+  return guarded_in(log_to, [&] {
     const char* fn = "sp_simulation_live_indicators";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
     const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
@@ -316,7 +420,8 @@ sp_result sp_simulation_live_indicators(sp_simulation* simulation, sp_indicator*
 }
 
 sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept {
-  return guarded([&] {
+  sp_context* log_to = context_of(simulation);
+  return guarded_in(log_to, [&] {
     const char* fn = "sp_simulation_stats";
     require_live(HandleKind::Simulation, simulation, fn, "simulation");
     const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
@@ -328,6 +433,38 @@ sp_result sp_simulation_stats(sp_simulation* simulation, sp_stats* out) noexcept
     result.rays_emitted = stats.rays_emitted;
     result.indicators = stats.indicators;
     *out = result;
+  });
+}
+
+sp_result sp_simulation_layer_stats(sp_simulation* simulation, sp_layer_stats* out, uint32_t capacity,
+                                    uint32_t* count) noexcept {
+  sp_context* log_to = context_of(simulation);
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_simulation_layer_stats";
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
+    require(count != nullptr, fn, "count is NULL");
+    require(out != nullptr || capacity == 0, fn, "out is NULL but capacity > 0");
+    const sp::SimulationStats stats = unwrap(simulation->simulator->stats());
+    // One entry per layer of the scene: a uint32_t layer id.
+    const auto n = static_cast<uint32_t>(stats.layers.size());
+    const uint32_t written = n < capacity ? n : capacity;
+    for (uint32_t i = 0; i < written; ++i) {
+      const sp::LayerCounters& in = stats.layers[i];
+      out[i] =
+          sp_layer_stats{in.hits, in.reflections, in.penetrations, in.no_way_out, in.back_face_hits, in.diffractions};
+    }
+    *count = n;
+  });
+}
+
+sp_result sp_simulation_thread_count(sp_simulation* simulation, uint32_t* out) noexcept {
+  return guarded([&] {
+    const char* fn = "sp_simulation_thread_count";
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
+    require(out != nullptr, fn, "out is NULL");
+    *out = simulation->simulator->thread_count();
   });
 }
 

@@ -17,6 +17,7 @@
 #include "soundpaint/visualizer.h"
 
 struct sp_visualizer {
+  sp::capi::ContextRef context;  // its allocator gave this handle's memory
   std::unique_ptr<sp::Visualizer> visualizer;
   sp_sound_scene sound_scene;
   sp::capi::OneThreadAtATime rendering;  // every call but backend, scene and create
@@ -25,6 +26,7 @@ struct sp_visualizer {
 namespace {
 
 using sp::capi::guarded;
+using sp::capi::guarded_in;
 using sp::capi::HandleKind;
 using sp::capi::require;
 using sp::capi::require_live;
@@ -88,22 +90,70 @@ void sp_draw_target_init(sp_draw_target* target) noexcept {
   *target = std::bit_cast<sp_draw_target>(sp::DrawTarget{});
 }
 
+void sp_visualizer_options_init(sp_visualizer_options* options) noexcept {
+  if (options == nullptr) return;
+  const sp::VisualizerSettings defaults;
+  *options = sp_visualizer_options{};
+  options->struct_size = sizeof(sp_visualizer_options);
+  options->backend = SP_BACKEND_AUTO;
+  options->memory_budget_bytes = defaults.cpu.memory_budget_bytes;
+  options->max_steps_per_frame = defaults.max_steps_per_frame;
+}
+
+}  // extern "C"
+
+namespace {
+
+void create_visualizer(sp_context& context, const sp_host_vulkan* host, const sp_draw_target* target,
+                       const sp_scene* scene, const char* config_json, const sp_visualizer_options& options,
+                       sp_visualizer** out, const char* fn) {
+  require(host != nullptr, fn, "host is NULL");
+  require(target != nullptr, fn, "target is NULL");
+  require_live(HandleKind::Scene, scene, fn, "scene");
+  require(out != nullptr, fn, "out is NULL");
+  sp::capi::require_struct_size(options.struct_size, sizeof(sp_visualizer_options), fn, "options");
+  require(options.memory_budget_bytes > 0, fn, "options->memory_budget_bytes is 0");
+  require(options.max_steps_per_frame > 0, fn, "options->max_steps_per_frame is 0");
+  sp::VisualizerSettings settings;
+  settings.backend = sp::capi::backend_choice(options.backend, fn);
+  settings.cpu.threads = sp::capi::thread_count(context, options.threads);
+  settings.cpu.memory_budget_bytes = options.memory_budget_bytes;
+  settings.max_steps_per_frame = options.max_steps_per_frame;
+  sp::capi::WorldOptions world_options;
+  world_options.threads = settings.cpu.threads;
+  auto visualizer = sp::capi::make_handle<sp_visualizer>(context);
+  visualizer->visualizer = unwrap(sp::Visualizer::create(
+      to_cpp(*host), to_cpp(*target), sp::capi::world_from(*scene, config_json, world_options), settings));
+  visualizer->sound_scene.scene = &visualizer->visualizer->scene();
+  sp::capi::register_handle(HandleKind::Visualizer, visualizer.get(), &visualizer->sound_scene);
+  *out = visualizer.release();
+}
+
+}  // namespace
+
+extern "C" {
+
 sp_result sp_visualizer_create(const sp_host_vulkan* host, const sp_draw_target* target, const sp_scene* scene,
                                const char* config_json, sp_backend backend, sp_visualizer** out) noexcept {
   return guarded([&] {
-    const char* fn = "sp_visualizer_create";
-    require(host != nullptr, fn, "host is NULL");
-    require(target != nullptr, fn, "target is NULL");
-    require_live(HandleKind::Scene, scene, fn, "scene");
-    require(out != nullptr, fn, "out is NULL");
-    sp::VisualizerSettings settings;
-    settings.backend = sp::capi::backend_choice(backend, fn);
-    auto visualizer = std::make_unique<sp_visualizer>();
-    visualizer->visualizer = unwrap(
-        sp::Visualizer::create(to_cpp(*host), to_cpp(*target), sp::capi::world_from(*scene, config_json), settings));
-    visualizer->sound_scene.scene = &visualizer->visualizer->scene();
-    sp::capi::register_handle(HandleKind::Visualizer, visualizer.get(), &visualizer->sound_scene);
-    *out = visualizer.release();
+    sp_visualizer_options options;
+    sp_visualizer_options_init(&options);
+    options.backend = backend;
+    create_visualizer(sp::capi::default_context(), host, target, scene, config_json, options, out,
+                      "sp_visualizer_create");
+  });
+}
+
+sp_result sp_visualizer_create_in(sp_context* context, const sp_host_vulkan* host, const sp_draw_target* target,
+                                  const sp_scene* scene, const char* config_json, const sp_visualizer_options* options,
+                                  sp_visualizer** out) noexcept {
+  sp_context* log_to = nullptr;
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_visualizer_create_in";
+    log_to = &sp::capi::context_of(context, fn);
+    sp_visualizer_options defaults;
+    sp_visualizer_options_init(&defaults);
+    create_visualizer(*log_to, host, target, scene, config_json, options != nullptr ? *options : defaults, out, fn);
   });
 }
 

@@ -33,6 +33,7 @@ class CpuSimulator final : public Simulator {
   std::string device_description() const override {
     return "CPU, " + std::to_string(runner_.threads()) + " thread" + (runner_.threads() == 1 ? "" : "s");
   }
+  std::uint32_t thread_count() const override { return runner_.threads(); }
   SoundScene& scene() override { return scene_; }
   const SoundScene& scene() const override { return scene_; }
   std::uint64_t steps_run() const override { return steps_run_; }

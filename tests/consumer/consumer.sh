@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Driver of the consumer tests (tests/consumer/CMakeLists.txt says what each
 # checks):  consumer.sh MODE [CONFIG]
-#   MODE: install | find_package | pkg_config | installed_headers | add_subdirectory
+#   MODE: install | find_package | pkg_config | installed_headers | add_subdirectory | shared
 # ctest gives the rest in the environment: SP_SOURCE_DIR, SP_BUILD_DIR,
 # SP_WORK_DIR (this test's scratch folder), SP_CMAKE, SP_CTEST, SP_GENERATOR,
 # SP_CC, SP_CXX, SP_JOBS, SP_LINK_FLAGS.
@@ -34,6 +34,22 @@ run_consumer() {
   local program="$1"
   step "run $program"
   "$program" || fail "$program failed"
+}
+
+# A shared libsoundpaint exports sp_* and sp::* only (export.h,
+# cmake/exports.map): the C API and the public C++ API, nothing inside.
+check_exports() {
+  local lib="$1"
+  step "dynamic symbols of $lib"
+  nm -D --defined-only "$lib" | awk '{ $1 = ""; $2 = ""; sub(/^  /, ""); print }' | c++filt >"$SP_WORK_DIR/exports.txt"
+  grep -qx 'sp_get_version' "$SP_WORK_DIR/exports.txt" || fail "$lib does not export sp_get_version"
+  grep -q '^sp::parse_config(' "$SP_WORK_DIR/exports.txt" || fail "$lib does not export sp::parse_config"
+  grep -qx 'typeinfo for sp::Exception' "$SP_WORK_DIR/exports.txt" || fail "$lib does not export sp::Exception's typeinfo"
+  # The version nodes the linker adds (none with a plain version script) aside.
+  stray="$(grep -vE '^(sp_[A-Za-z0-9_]+|sp::.*|(typeinfo|typeinfo name|vtable|VTT|(non-)?virtual thunk to) (for )?sp::.*)$' \
+    "$SP_WORK_DIR/exports.txt" || true)"
+  [ -z "$stray" ] || fail "$lib exports symbols outside sp_* and sp::*: $(echo "$stray" | head -20)"
+  echo "$(wc -l <"$SP_WORK_DIR/exports.txt") symbols, all sp_* or sp::*"
 }
 
 # Configures tests/consumer/project/ into $1 with the remaining arguments, builds it.
@@ -75,6 +91,7 @@ case "$mode" in
     if readelf -d "$lib" 2>/dev/null | grep -E 'NEEDED.*libstb'; then
       fail "$lib links stb"
     fi
+    case "$lib" in *.so*) check_exports "$lib" ;; esac
     "$prefix/bin/soundpaint" --help >/dev/null || fail "the installed soundpaint --help failed"
     find "$prefix" -type f | sed "s|^$prefix/||" | sort
     ;;
@@ -191,8 +208,38 @@ case "$mode" in
     [ "${tests:-0}" = 0 ] || fail "the parent's ctest lists $tests tests of soundpaint's"
     ;;
 
+  shared)
+    # A shared libsoundpaint, built and installed apart from this build
+    # (which may be static), exports sp_* and sp::* only (export.h), and the
+    # consumers, the OpenAL adapter's included, link and run against it.
+    dir="$SP_WORK_DIR/shared_build"
+    shared_prefix="$SP_WORK_DIR/shared_prefix"
+    rm -rf "$shared_prefix"
+    step "configure a shared build of $SP_SOURCE_DIR in $dir"
+    "$cmake" -S "$SP_SOURCE_DIR" -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE="$config" -DBUILD_SHARED_LIBS=ON \
+      -DSOUNDPAINT_BUILD_TESTS=OFF -DSOUNDPAINT_BUILD_BENCH=OFF -DSOUNDPAINT_BUILD_EXAMPLES=OFF \
+      -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_SHARED_LINKER_FLAGS="$link_flags"
+    step "build everything it installs, -j$jobs"
+    "$cmake" --build "$dir" --config "$config" -j"$jobs"
+    "$cmake" --install "$dir" --config "$config" --prefix "$shared_prefix"
+    lib="$(find "$shared_prefix" -name 'libsoundpaint.so.*' -type f -print -quit)"
+    [ -n "$lib" ] || fail "no libsoundpaint.so.* under $shared_prefix"
+    check_exports "$lib"
+    build_project "$SP_WORK_DIR/shared_consumers" -DCMAKE_BUILD_TYPE="$config" -DSP_CONSUMER_MODE=package \
+      -DCMAKE_PREFIX_PATH="$shared_prefix"
+    "$cmake" --build "$SP_WORK_DIR/shared_consumers" -j"$jobs"
+    run_consumer "$SP_WORK_DIR/shared_consumers/consumer_cpp"
+    run_consumer "$SP_WORK_DIR/shared_consumers/consumer_c"
+    if [ -n "$(find "$shared_prefix" -name soundpaintOpenALTargets.cmake -print -quit)" ]; then
+      build_project "$SP_WORK_DIR/shared_openal" -DCMAKE_BUILD_TYPE="$config" -DSP_CONSUMER_MODE=package \
+        -DSP_CONSUMER_OPENAL=ON -DCMAKE_PREFIX_PATH="$shared_prefix"
+      "$cmake" --build "$SP_WORK_DIR/shared_openal" -j"$jobs" --target consumer_openal
+      ALSOFT_DRIVERS=null run_consumer "$SP_WORK_DIR/shared_openal/consumer_openal"
+    fi
+    ;;
+
   *)
-    fail "unknown mode (install, find_package, pkg_config, installed_headers, add_subdirectory)"
+    fail "unknown mode (install, find_package, pkg_config, installed_headers, add_subdirectory, shared)"
     ;;
 esac
 echo "consumer.sh $mode: ok"
