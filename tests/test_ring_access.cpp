@@ -59,7 +59,7 @@ World room() {
 // The engine's side: its pipeline and the ring's descriptor set.
 class RingPainter {
  public:
-  RingPainter(const vk::Context& context, const IndicatorRing& ring) : context_(context) {
+  RingPainter(const vk::Context& context, const IndicatorRing& ring) {
     VkDescriptorSetLayoutBinding binding{};
     binding.binding = 0;
     binding.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -127,7 +127,6 @@ class RingPainter {
   }
 
  private:
-  const vk::Context& context_;
   vk::UniqueDescriptorSetLayout layout_;
   vk::UniqueDescriptorPool pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;

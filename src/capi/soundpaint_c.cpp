@@ -151,11 +151,6 @@ void create_scene(sp_context& context, const SceneArrays& in, sp_scene** out, co
   *out = scene.release();
 }
 
-}  // namespace
-
-extern "C" {
-
-namespace {
 
 void load_scene_into(sp_context& context, const char* path, const sp::SceneLoadOptions& options, sp_scene** out,
                      const char* fn) {
@@ -181,6 +176,8 @@ sp::SceneLoadOptions to_cpp(const sp_scene_load_options& options, const char* fn
 }
 
 }  // namespace
+
+extern "C" {
 
 sp_result sp_scene_load(const char* path, sp_scene** out) noexcept {
   return guarded(

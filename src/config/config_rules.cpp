@@ -58,7 +58,8 @@ void check_numbers(const Config& c, std::string_view origin) {
   }
   if (c.listener_position) {
     const Vec3& p = *c.listener_position;
-    for (int i = 0; i < 3; ++i) check(p[i], json_fields::kAnyNumber, top.key("listener").key("position").index(i));
+    for (std::size_t i = 0; i < 3; ++i)
+      check(p[static_cast<int>(i)], json_fields::kAnyNumber, top.key("listener").key("position").index(i));
   }
   const JsonPath diffraction = top.key("diffraction");
   check(c.diffraction.edge_angle, kEdgeAngle, diffraction.key("edge_angle"));
