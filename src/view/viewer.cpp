@@ -1,5 +1,6 @@
 #include "core/glm_interop.h"
 #include "view/viewer.h"
+#include "view/viewer_loop.h"
 
 #include <GLFW/glfw3.h>
 
@@ -52,39 +53,6 @@ const char* const kControls =
     "  The panel also sets the ray budget, diffraction and every display setting;\n"
     "  a --config file is reloaded when it changes (a bad one is not: the running config stays).\n";
 
-namespace {
-
-constexpr std::uint32_t kFramesInFlight = 2;
-// Timestamps per frame: simulation, scene pass and indicator pass, each
-// begin and end.
-constexpr std::uint32_t kQueriesPerFrame = 6;
-constexpr float kFlySpeed = 4.0f;  // metres a second; Shift: 4x
-
-class Surface {
- public:
-  Surface(VkInstance instance, VkSurfaceKHR surface) : instance_(instance), surface_(surface) {}
-  ~Surface() { vkDestroySurfaceKHR(instance_, surface_, nullptr); }
-  Surface(const Surface&) = delete;
-  Surface& operator=(const Surface&) = delete;
-  VkSurfaceKHR get() const { return surface_; }
-
- private:
-  VkInstance instance_;
-  VkSurfaceKHR surface_;
-};
-
-// What the viewer can change and rebuild a visualizer from.
-struct Session {
-  Scene scene;
-  // The level's geometry, built once: every rebuild of the visualizer (a
-  // new ray budget, a reloaded config, the other backend) shares it.
-  WorldGeometryHandle geometry;
-  Config config;
-  BackendChoice backend = BackendChoice::Auto;
-  std::vector<SourceDesc> placed;  // sources placed by clicking, kept across rebuilds
-  bool listener_pinned = false;
-};
-
 // What the viewer adds to a config, at start and on every reload alike.
 void apply_viewer_defaults(Config& config, const Scene& scene) {
   // Like render: off-screen arrows unless the config says no.
@@ -92,98 +60,11 @@ void apply_viewer_defaults(Config& config, const Scene& scene) {
   if (!config.listener_position && !scene.camera) config.listener_position = glm::vec3(0.0f);
 }
 
-// A change of config or backend, applied at the top of the next frame. The
-// running config and painting stay until its painting has been built.
-struct Change {
-  Config config;
-  BackendChoice backend = BackendChoice::Auto;
-  bool reload = false;  // the --config file's; else the panel's or a key's
-};
-
 std::vector<std::string> category_names() {
   std::vector<std::string> names;
   for (const BuiltinCategory& c : builtin_categories()) names.emplace_back(c.name);
   return names;
 }
-
-// The scene pass clears and writes depth; the indicator pass then tests
-// against it and samples it read-only (clipping spots to surfaces).
-void begin_pass(VkCommandBuffer cmd, VkImageView color_view, VkImageView depth_view, VkExtent2D extent, bool first) {
-  VkRenderingAttachmentInfo color = draw::attachment({color_view, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                                      first ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD,
-                                                      VK_ATTACHMENT_STORE_OP_STORE});
-  // The scene pass's clear colour is linear, as the sRGB swapchain expects.
-  std::memcpy(color.clearValue.color.float32, draw::ScenePass::kClearColor, sizeof(float) * 4);
-  VkRenderingAttachmentInfo depth =
-      draw::attachment(first ? draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                                                   VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE}
-                             : draw::AttachmentUse{depth_view, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
-                                                   VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_NONE});
-  depth.clearValue.depthStencil = {1.0f, 0};
-  draw::begin_rendering(cmd, extent, color, depth);
-  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
-                            0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, extent};
-  vkCmdSetViewport(cmd, 0, 1, &viewport);
-  vkCmdSetScissor(cmd, 0, 1, &scissor);
-}
-
-// The frame loop's state: the device, the window's swapchain, the frames in
-// flight, and what is painted.
-class Viewer {
- public:
-  // `first_world`: make_world(session.scene, session.config), already made;
-  // `watch`: the --config file's, already polled once for session.config.
-  Viewer(const ViewerOptions& options, Window& window, Session session, World first_world,
-         std::optional<ConfigWatch> watch);
-  ~Viewer();
-  void run();
-  std::uint32_t validation_messages() const { return context_->validation_message_count(); }
-
- private:
-  void handle_input(float seconds);
-  void place_or_play(bool play);
-  Change& change();
-  std::optional<std::uint64_t> read_scripted_check();
-  void check_config();
-  void apply_change();
-  void show_session_in_panel();
-  void recreate_swapchain();
-  void read_timestamps(std::uint32_t slot);
-  bool record_and_present(std::uint32_t slot, bool last, double dt);
-
-  const ViewerOptions& options_;
-  Window& window_;
-  Session session_;
-  std::unique_ptr<vk::Context> context_;
-  std::unique_ptr<Surface> surface_;
-  std::unique_ptr<Swapchain> swapchain_;
-  vk::UniqueCommandPool pool_;
-  std::array<VkCommandBuffer, kFramesInFlight> commands_{};
-  std::array<vk::UniqueFence, kFramesInFlight> fences_;
-  std::array<UniqueSemaphore, kFramesInFlight> acquired_;
-  std::array<bool, kFramesInFlight> submitted_{};
-  vk::UniqueQueryPool queries_;
-  std::array<vk::Buffer, kFramesInFlight> totals_;  // record_totals' copy, read after the slot's fence
-  double timestamp_ms_ = 0.0;                       // milliseconds per timestamp tick
-  Screenshot screenshot_;
-  Painting painting_;
-  std::unique_ptr<UiPanel> panel_;
-  PanelState panel_state_;
-  PanelStats stats_;
-  std::vector<std::string> categories_ = category_names();
-  FlyCamera camera_;
-  glm::vec2 last_cursor_{0.0f};
-  bool paused_ = false;
-  bool step_once_ = false;
-  std::optional<Change> change_;
-  bool swapchain_stale_ = false;
-  std::optional<ConfigWatch> watch_;
-  // config_checks_from_stdin: the frame before which the file is checked
-  // next, as the input's last line named it; nothing once the input ended.
-  std::optional<std::uint64_t> scripted_check_;
-  std::uint64_t frame_ = 0;
-};
 
 Viewer::Viewer(const ViewerOptions& options, Window& window, Session session, World first_world,
                std::optional<ConfigWatch> watch)
@@ -243,80 +124,6 @@ Viewer::~Viewer() {
 Change& Viewer::change() {
   if (!change_) change_ = Change{.config = session_.config, .backend = session_.backend};
   return *change_;
-}
-
-// config_checks_from_stdin: waits for the input's next line, the frame
-// before which the file is checked next. Nothing when the input has ended.
-std::optional<std::uint64_t> Viewer::read_scripted_check() {
-  std::string line;
-  if (!std::getline(std::cin, line)) return std::nullopt;
-  std::uint64_t frame = 0;
-  const char* const end = line.data() + line.size();
-  const auto [stop, error] = std::from_chars(line.data(), end, frame);
-  if (error != std::errc() || stop != end || line.empty())
-    throw Exception(ErrorCode::InvalidArgument,
-                    "--config-checks-from-stdin: expected a frame number on each line, got '" + printable_text(line) +
-                        "'");
-  return frame;
-}
-
-void Viewer::check_config() {
-  std::optional<Result<Config>> found = watch_->poll();
-  if (!found) return;
-  if (!*found) {
-    const std::string line = printable_text(found->error().message + " (keeping the running config)");
-    std::fprintf(stderr, "view: %s\n", line.c_str());
-    stats_.notice = line;
-    return;
-  }
-  Change& wanted = change();
-  wanted.config = std::move(found->value());
-  apply_viewer_defaults(wanted.config, session_.scene);
-  wanted.reload = true;
-}
-
-// The new painting is built beside the running one, which goes only once
-// the new one stands: a config that parses but cannot run (over the memory
-// budget, a source the level refuses, a device error) leaves the viewer as
-// it was, and says why.
-void Viewer::apply_change() {
-  Change wanted = std::move(*change_);
-  change_.reset();
-  SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
-  (void)painting_.visualizer->wait_for_simulation();
-  // The panel's display edits, already applied, outlive a rebuild of its
-  // own; a reloaded file brings its own display.
-  if (!wanted.reload) wanted.config.display = painting_.visualizer->display();
-  try {
-    Painting next =
-        paint(*context_, *swapchain_, make_world(session_.scene, wanted.config, session_.geometry).value(),
-              {.backend = wanted.backend, .memory_budget_bytes = options_.memory_budget_bytes}, session_.placed);
-    painting_ = std::move(next);
-    session_.config = std::move(wanted.config);
-    session_.backend = wanted.backend;
-    stats_.notice.clear();
-    // The level's BVH count says that the new settings share the geometry
-    // (a reload and the panel's ray budget take this same path).
-    if (wanted.reload)
-      std::fprintf(stderr, "view: reloaded %s (ray budget %u; the level's BVH built %llu time(s) this run)\n",
-                   printable_text(watch_->path().string()).c_str(), session_.config.ray_budget,
-                   static_cast<unsigned long long>(bvh_builds()));
-  } catch (const std::exception& e) {
-    // Messages quote names from the files: escaped before the terminal or the panel shows them.
-    const std::string line =
-        printable_text(wanted.reload ? watch_->path().string() + ": " + e.what() + " (keeping the running config)"
-                                     : std::string(e.what()) + " (keeping the running settings)");
-    std::fprintf(stderr, "view: %s\n", line.c_str());
-    stats_.notice = line;
-  }
-  show_session_in_panel();
-}
-
-// The panel's controls show what runs, after a rebuild that failed too.
-void Viewer::show_session_in_panel() {
-  panel_state_.ray_budget = session_.config.ray_budget;
-  panel_state_.diffraction = session_.config.diffraction.enabled;
-  panel_state_.display = painting_.visualizer->display();
 }
 
 void Viewer::recreate_swapchain() {
@@ -382,156 +189,6 @@ void Viewer::handle_input(float seconds) {
   if (mouse && window_.mouse_down(GLFW_MOUSE_BUTTON_RIGHT)) camera_.turn(cursor - last_cursor_);
   if (window_.mouse_clicked(GLFW_MOUSE_BUTTON_LEFT) && mouse) place_or_play(shift);
   last_cursor_ = cursor;
-}
-
-void Viewer::read_timestamps(std::uint32_t slot) {
-  if (!submitted_[slot]) return;
-  SimulationTotals totals;
-  std::memcpy(&totals, totals_[slot].mapped(), sizeof totals);
-  stats_.casts = totals.casts;
-  stats_.rays_emitted = totals.rays_emitted;
-  stats_.indicators = totals.indicators;
-  stats_.live_indicators = static_cast<std::uint32_t>(totals.ring_filled);
-  stats_.totals_known = true;
-  if (!queries_) return;
-  std::array<std::uint64_t, kQueriesPerFrame> ticks{};
-  const VkResult result =
-      vkGetQueryPoolResults(context_->device(), queries_.get(), slot * kQueriesPerFrame, kQueriesPerFrame,
-                            sizeof(ticks), ticks.data(), sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT);
-  if (result != VK_SUCCESS) return;  // the fence has passed, so this is rare; keep the last figures
-  stats_.simulation_ms = double(ticks[1] - ticks[0]) * timestamp_ms_;
-  stats_.scene_ms = double(ticks[3] - ticks[2]) * timestamp_ms_;
-  stats_.indicators_ms = double(ticks[5] - ticks[4]) * timestamp_ms_;
-}
-
-bool Viewer::record_and_present(std::uint32_t slot, bool last, double dt) {
-  const VkDevice device = context_->device();
-  std::uint32_t image = 0;
-  VkResult acquired =
-      vkAcquireNextImageKHR(device, swapchain_->handle(), UINT64_MAX, acquired_[slot].get(), VK_NULL_HANDLE, &image);
-  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) return false;  // nothing was signalled: recreate and try again
-  if (acquired != VK_SUBOPTIMAL_KHR) SP_VK_CHECK(acquired);
-  const VkFence fence = fences_[slot].get();
-  SP_VK_CHECK(vkResetFences(device, 1, &fence));
-
-  const VkCommandBuffer cmd = commands_[slot];
-  SP_VK_CHECK(vkResetCommandBuffer(cmd, 0));
-  VkCommandBufferBeginInfo begin{};
-  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  SP_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  const std::uint32_t query = slot * kQueriesPerFrame;
-  if (queries_) vkCmdResetQueryPool(cmd, queries_.get(), query, kQueriesPerFrame);
-  auto stamp = [&](std::uint32_t k, VkPipelineStageFlags2 stage) {
-    if (queries_) vkCmdWriteTimestamp2(cmd, stage, queries_.get(), query + k);
-  };
-
-  Visualizer& visualizer = *painting_.visualizer;
-  if (!session_.listener_pinned) (void)visualizer.scene().set_listener(camera_.eye);
-  stamp(0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
-  // A scripted run shows what its frames computed, however long a step of
-  // the CPU backend takes: the step started a frame ago is handed over now.
-  // The picture of frame N is then the same on any machine, at any load.
-  if (options_.frames > 0) visualizer.wait_for_simulation().value();
-  if (!paused_ || step_once_) visualizer.record_simulation(cmd, paused_ ? session_.config.dt : dt).value();
-  step_once_ = false;
-  visualizer.record_totals(cmd, totals_[slot].get(), 0).value();
-  stamp(1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-
-  const VkImage color = swapchain_->image(image);
-  const VkImage depth = swapchain_->depth_image(image);
-  const VkPipelineStageFlags2 depth_stages =
-      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  // WAR: the image's last reader was presentation (ordered by the acquire
-  // semaphore, waited at this stage); its contents are not kept.
-  draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  // WAR: the previous frame on this image sampled and tested its depth.
-  draw::image_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, depth_stages | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                      0, depth_stages,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-  const VkExtent2D extent = swapchain_->extent();
-  const draw::ViewCamera view = camera_.view_camera(extent.width, extent.height);
-  stamp(2, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
-  begin_pass(cmd, swapchain_->views()[image], swapchain_->depth_view(image), extent, true);
-  painting_.scene_pass->record(cmd, view, visualizer.scene().listener());
-  vkCmdEndRendering(cmd);
-  stamp(3, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
-  // RAW: the scene's depth lands before the indicators test and sample it
-  // (their vertex stage samples each spot's centre).
-  draw::image_barrier(cmd, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                      VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, depth_stages,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      depth_stages | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-  stamp(4, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
-  begin_pass(cmd, swapchain_->views()[image], swapchain_->depth_view(image), extent, false);
-  DrawOptions draw_options;
-  draw_options.viewport_width = extent.width;
-  draw_options.viewport_height = extent.height;
-  draw_options.scene_depth = static_cast<std::int32_t>(image);
-  visualizer.record_draw(cmd, view.view, view.projection, draw_options).value();
-  vkCmdEndRendering(cmd);
-  stamp(5, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
-  panel_->record(cmd, image);
-
-  const bool screenshot = last && options_.screenshot && swapchain_->readable();
-  if (screenshot) {
-    screenshot_.record(*context_, cmd, color, extent);
-  } else {
-    // Presentation waits on the semaphore the submit signals after this.
-    draw::image_barrier(cmd, color, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                        VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0);
-  }
-  SP_VK_CHECK(vkEndCommandBuffer(cmd));
-
-  VkSemaphoreSubmitInfo wait{};
-  wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  wait.semaphore = acquired_[slot].get();
-  // The simulation's transfers and dispatches do not touch the image: only
-  // its first write waits for presentation to let go of it.
-  wait.stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  VkSemaphoreSubmitInfo signal{};
-  signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  signal.semaphore = swapchain_->rendered(image);
-  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  VkCommandBufferSubmitInfo command{};
-  command.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  command.commandBuffer = cmd;
-  VkSubmitInfo2 submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  submit.waitSemaphoreInfoCount = 1;
-  submit.pWaitSemaphoreInfos = &wait;
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &command;
-  submit.signalSemaphoreInfoCount = 1;
-  submit.pSignalSemaphoreInfos = &signal;
-  SP_VK_CHECK(vkQueueSubmit2(context_->queue(), 1, &submit, fence));
-  submitted_[slot] = true;
-
-  const VkSemaphore rendered = swapchain_->rendered(image);
-  const VkSwapchainKHR swapchain = swapchain_->handle();
-  VkPresentInfoKHR present{};
-  present.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;
-  present.waitSemaphoreCount = 1;
-  present.pWaitSemaphores = &rendered;
-  present.swapchainCount = 1;
-  present.pSwapchains = &swapchain;
-  present.pImageIndices = &image;
-  const VkResult presented = vkQueuePresentKHR(context_->queue(), &present);
-  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR || acquired == VK_SUBOPTIMAL_KHR) {
-    swapchain_stale_ = true;
-  } else {
-    SP_VK_CHECK(presented);
-  }
-  if (screenshot) {
-    SP_VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
-    screenshot_.write(*options_.screenshot, swapchain_->format());
-  }
-  return true;
 }
 
 void Viewer::run() {
@@ -615,7 +272,6 @@ void Viewer::run() {
   SP_VK_CHECK(vkDeviceWaitIdle(context_->device()));
 }
 
-}  // namespace
 
 std::uint32_t run_viewer(const ViewerOptions& options) {
   Session session;
