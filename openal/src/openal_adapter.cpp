@@ -18,7 +18,7 @@ namespace {
 
 constexpr ALuint kProbeMargin = 64;  // OpenAL Soft's block of source ids
 
-Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
+Error invalid_call(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
 
 Vec3 transform(const Mat4& m, Vec3 p) {
   Vec3 out;
@@ -40,8 +40,8 @@ Result<bool> Adapter::note_buffer_data(ALuint buffer, ALenum format, const ALvoi
                                        ALsizei frequency, std::string_view name) {
   auto signal = buffer_signal(format, data, size, frequency);
   if (!signal)
-    return invalid("openal: buffer " + std::to_string(buffer) + " (\"" + std::string(name) +
-                   "\"): " + signal.error().message);
+    return invalid_call("openal: buffer " + std::to_string(buffer) + " (\"" + std::string(name) +
+                        "\"): " + signal.error().message);
   Buffer described;
   described.signal = std::make_shared<const Signal>(std::move(signal).value());
   described.category = settings_.rules ? settings_.rules->category_of(name) : std::optional<std::string>(name);
@@ -56,8 +56,8 @@ Result<bool> Adapter::buffer_data(ALuint buffer, ALenum format, const ALvoid* da
   alGetError();  // clear an earlier error, so the one read below is alBufferData's
   alBufferData(buffer, format, data, size, frequency);
   if (const ALenum error = alGetError(); error != AL_NO_ERROR)
-    return invalid("openal: alBufferData(buffer " + std::to_string(buffer) +
-                   ") failed: " + (alGetString(error) != nullptr ? alGetString(error) : "unknown AL error"));
+    return invalid_call("openal: alBufferData(buffer " + std::to_string(buffer) +
+                        ") failed: " + (alGetString(error) != nullptr ? alGetString(error) : "unknown AL error"));
   return note_buffer_data(buffer, format, data, size, frequency, name);
 }
 
@@ -69,7 +69,7 @@ std::optional<std::uint32_t> Adapter::source_id(ALuint source) const {
 
 Result<FrameReport> Adapter::update() {
   if (alcGetCurrentContext() == nullptr)
-    return invalid("openal: no current AL context (call alcMakeContextCurrent before Adapter::update)");
+    return invalid_call("openal: no current AL context (call alcMakeContextCurrent before Adapter::update)");
   FrameReport report;
   ALfloat lx = 0, ly = 0, lz = 0;
   alGetListener3f(AL_POSITION, &lx, &ly, &lz);
@@ -96,7 +96,7 @@ Result<FrameReport> Adapter::update() {
     if (!trouble.empty() && problems++ == 0) problem = std::move(trouble);
   }
   if (problems > 0)
-    return invalid(problem + (problems > 1 ? " (and " + std::to_string(problems - 1) + " more)" : std::string()));
+    return invalid_call(problem + (problems > 1 ? " (and " + std::to_string(problems - 1) + " more)" : std::string()));
   return report;
 }
 

@@ -160,6 +160,21 @@ void destroy_handle(HandleKind kind, T* handle, const char* function, const char
   delete_handle(handle);
 }
 
+// The scene behind a live handle; throws InvalidArgument otherwise.
+inline SoundScene& scene_of(const sp_sound_scene* scene, const char* function) {
+  require_live(HandleKind::SoundScene, scene, function, "scene");
+  return *scene->scene;
+}
+
+// *out = the sound scene a live simulation or visualizer owns (the
+// `sp_*_scene` getters); `what` names the owner's parameter.
+template <class Owner>
+void hand_out_scene(HandleKind kind, Owner* owner, sp_sound_scene** out, const char* function, const char* what) {
+  require_live(kind, owner, function, what);
+  require(out != nullptr, function, "out is NULL");
+  *out = &owner->sound_scene;
+}
+
 // The backend, checked (the enum comes from C and may hold anything).
 BackendChoice backend_choice(sp_backend backend, const char* function);
 

@@ -20,12 +20,8 @@ namespace {
 using sp::capi::guarded;
 using sp::capi::HandleKind;
 using sp::capi::require;
+using sp::capi::scene_of;
 using sp::capi::unwrap;
-
-sp::SoundScene& scene_of(const sp_sound_scene* scene, const char* fn) {
-  sp::capi::require_live(HandleKind::SoundScene, scene, fn, "scene");
-  return *scene->scene;
-}
 
 const sp_signal& signal_of(const sp_signal* signal, const char* fn) {
   sp::capi::require_live(HandleKind::Signal, signal, fn, "signal");

@@ -14,13 +14,8 @@ namespace {
 using sp::capi::guarded;
 using sp::capi::HandleKind;
 using sp::capi::require;
+using sp::capi::scene_of;
 using sp::capi::unwrap;
-
-// The scene behind a live handle; throws InvalidArgument otherwise.
-sp::SoundScene& scene_of(const sp_sound_scene* scene, const char* fn) {
-  sp::capi::require_live(HandleKind::SoundScene, scene, fn, "scene");
-  return *scene->scene;
-}
 
 bool finite(float x, float y, float z) { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 

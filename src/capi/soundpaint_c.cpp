@@ -349,12 +349,8 @@ sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
 }
 
 sp_result sp_simulation_scene(sp_simulation* simulation, sp_sound_scene** out) noexcept {
-  return guarded([&] {
-    const char* fn = "sp_simulation_scene";
-    require_live(HandleKind::Simulation, simulation, fn, "simulation");
-    require(out != nullptr, fn, "out is NULL");
-    *out = &simulation->sound_scene;
-  });
+  return guarded(
+      [&] { sp::capi::hand_out_scene(HandleKind::Simulation, simulation, out, "sp_simulation_scene", "simulation"); });
 }
 
 sp_result sp_simulation_set_listener(sp_simulation* simulation, float x, float y, float z) noexcept {

@@ -166,12 +166,8 @@ sp_result sp_visualizer_destroy(sp_visualizer* visualizer) noexcept {
 }
 
 sp_result sp_visualizer_scene(sp_visualizer* visualizer, sp_sound_scene** out) noexcept {
-  return guarded([&] {
-    const char* fn = "sp_visualizer_scene";
-    require_live(HandleKind::Visualizer, visualizer, fn, "visualizer");
-    require(out != nullptr, fn, "out is NULL");
-    *out = &visualizer->sound_scene;
-  });
+  return guarded(
+      [&] { sp::capi::hand_out_scene(HandleKind::Visualizer, visualizer, out, "sp_visualizer_scene", "visualizer"); });
 }
 
 sp_result sp_visualizer_backend(const sp_visualizer* visualizer, sp_backend* out) noexcept {

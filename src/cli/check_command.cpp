@@ -12,7 +12,7 @@
 namespace sp::cli {
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kCheckHelp =
     "usage: soundpaint check SCENE [--config FILE] [--json OUT.json] [--memory-budget SIZE] [--max-triangles N]\n"
     "                        [--allow-external-uris]\n"
     "\n"
@@ -35,7 +35,7 @@ int run_check(const std::vector<std::string>& args) {
   ParsedArgs parsed = parse_args(
       args, with_options(with_options({"--config", "--json"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
       with_options({"--help"}, kSceneLimitFlagOptions));
-  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help()})) return 0;
+  if (printed_help(parsed, {kCheckHelp, scene_limit_help(), memory_limit_help()})) return 0;
   const std::string& scene_path = scene_argument(parsed, "check");
   CheckSettings settings;
   settings.memory_budget_bytes = memory_budget(parsed);

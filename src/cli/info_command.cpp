@@ -20,7 +20,7 @@
 namespace sp::cli {
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kInfoHelp =
     "usage: soundpaint info SCENE [--config FILE] [--max-triangles N] [--allow-external-uris]\n"
     "                             [--memory-budget SIZE]\n"
     "\n"
@@ -51,7 +51,7 @@ int run_info(const std::vector<std::string>& args) {
   ParsedArgs parsed =
       parse_args(args, with_options(with_options({"--config"}, kSceneLimitValueOptions), kMemoryLimitValueOptions),
                  with_options({"--help"}, kSceneLimitFlagOptions));
-  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help()})) return 0;
+  if (printed_help(parsed, {kInfoHelp, scene_limit_help(), memory_limit_help()})) return 0;
   const std::string& scene_path = scene_argument(parsed, "info");
   Config config;
   if (auto path = parsed.value("--config")) config = load_config(*path).value();

@@ -24,7 +24,7 @@
 namespace sp::cli {
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kRenderHelp =
     "usage: soundpaint render SCENE --out IMAGE.png [--config FILE] [--backend cpu|gpu|auto]\n"
     "                         [--steps N] [--seed S] [--threads T] [--width W] [--height H]\n"
     "                         [--camera-pos x,y,z] [--look-at x,y,z] [--fov DEGREES] [--frames K]\n"
@@ -72,7 +72,7 @@ int run_render(const std::vector<std::string>& args) {
                                 kMemoryLimitValueOptions),
                    kEventValueOptions),
       with_options({"--help"}, kSceneLimitFlagOptions));
-  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(), event_help(),
+  if (printed_help(parsed, {kRenderHelp, scene_limit_help(), memory_limit_help(), event_help(),
                             "  (with --events and no --camera-pos, the picture is taken from the trace's listener,\n"
                             "   the player, facing where the player faced)\n"}))
     return 0;

@@ -15,7 +15,7 @@
 namespace sp::cli {
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kSimulateHelp =
     "usage: soundpaint simulate SCENE [--config FILE] [--backend cpu|gpu|auto] [--steps N]\n"
     "                           [--seed S] [--threads T] [--indicators OUT.csv] [--stats OUT.json]\n"
     "                           [--max-triangles N] [--allow-external-uris] [--memory-budget SIZE]\n"
@@ -43,7 +43,7 @@ int run_simulate(const std::vector<std::string>& args) {
                                                            kMemoryLimitValueOptions),
                                               kEventValueOptions),
                                  with_options({"--help"}, kSceneLimitFlagOptions));
-  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(), event_help()})) return 0;
+  if (printed_help(parsed, {kSimulateHelp, scene_limit_help(), memory_limit_help(), event_help()})) return 0;
   const std::string& scene_path = scene_argument(parsed, "simulate");
   const std::uint64_t steps = parsed.unsigned_value("--steps", 0, 100'000'000).value_or(120);
   const auto seed = parsed.unsigned_value("--seed", 0, 0xFFFFFFFFull);

@@ -19,7 +19,7 @@
 namespace sp::cli {
 namespace {
 
-constexpr const char* kHelp =
+constexpr const char* kViewHelp =
     "usage: soundpaint view SCENE [--config FILE] [--backend cpu|gpu|auto] [--width W] [--height H]\n"
     "                       [--camera-pos x,y,z] [--look-at x,y,z] [--fov DEGREES]\n"
     "                       [--frames N] [--screenshot OUT.png] [--memory-budget SIZE]\n"
@@ -53,7 +53,7 @@ int run_view(const std::vector<std::string>& args) {
                               kMemoryLimitValueOptions),
                  with_options({"--help", "--no-panel", "--config-checks-from-stdin"}, kSceneLimitFlagOptions));
 #ifdef SOUNDPAINT_HAVE_VIEWER
-  if (printed_help(parsed, {kHelp, view::kControls, scene_limit_help(), memory_limit_help()})) return 0;
+  if (printed_help(parsed, {kViewHelp, view::kControls, scene_limit_help(), memory_limit_help()})) return 0;
   view::ViewerOptions options;
   options.scene_path = scene_argument(parsed, "view");
   options.config_path = parsed.value("--config");
@@ -99,7 +99,7 @@ int run_view(const std::vector<std::string>& args) {
                  options.screenshot->c_str(), static_cast<unsigned long long>(options.frames));
   return 0;
 #else
-  if (printed_help(parsed, {kHelp, scene_limit_help(), memory_limit_help(),
+  if (printed_help(parsed, {kViewHelp, scene_limit_help(), memory_limit_help(),
                             "  (this build has no viewer: GLFW or Dear ImGui was missing when it was configured)\n"}))
     return 0;
   throw Exception(ErrorCode::InvalidArgument,

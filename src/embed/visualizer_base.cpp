@@ -4,17 +4,14 @@
 
 #include <glm/matrix.hpp>
 
+#include "core/invalid_argument.h"
 #include "core/finite.h"
 #include "draw/display_sources.h"
 #include "embed/viewport_check.h"
 #include "sp_types.h"
 
 namespace sp::embed {
-namespace {
-
-Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
-
-}  // namespace
+namespace {}  // namespace
 
 VisualizerBase::VisualizerBase(std::unique_ptr<vk::Context> context, const DrawTarget& target, World world,
                                const VisualizerSettings& settings, bool simulation_on_graphics_queue)
@@ -25,8 +22,9 @@ VisualizerBase::VisualizerBase(std::unique_ptr<vk::Context> context, const DrawT
       pass_(*context_, target, scene_.source_capacity()) {}
 
 Result<bool> VisualizerBase::check_simulation_args(VkCommandBuffer cmd, double dt) const {
-  if (cmd == VK_NULL_HANDLE) return invalid("record_simulation: the command buffer is VK_NULL_HANDLE");
-  if (!(dt >= 0.0) || !std::isfinite(dt)) return invalid("record_simulation: dt must be finite and >= 0");
+  if (cmd == VK_NULL_HANDLE) return invalid_argument_error("record_simulation: the command buffer is VK_NULL_HANDLE");
+  if (!(dt >= 0.0) || !std::isfinite(dt))
+    return invalid_argument_error("record_simulation: dt must be finite and >= 0");
   return true;
 }
 
@@ -43,20 +41,23 @@ Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, 
 
 Result<bool> VisualizerBase::record_draw(VkCommandBuffer cmd, const Mat4& view, const Mat4& projection,
                                          const DrawOptions& options) {
-  if (cmd == VK_NULL_HANDLE) return invalid("record_draw: the command buffer is VK_NULL_HANDLE");
-  if (!all_finite(view) || !all_finite(projection)) return invalid("record_draw: view and projection must be finite");
+  if (cmd == VK_NULL_HANDLE) return invalid_argument_error("record_draw: the command buffer is VK_NULL_HANDLE");
+  if (!all_finite(view) || !all_finite(projection))
+    return invalid_argument_error("record_draw: view and projection must be finite");
   const VkRect2D* area = options.area;
   if (area != nullptr && (area->extent.width == 0 || area->extent.height == 0))
-    return invalid("record_draw: the area is empty");
+    return invalid_argument_error("record_draw: the area is empty");
   if (const std::optional<embed::FieldProblem> problem = embed::viewport_problem(options))
-    return invalid("record_draw: " + problem->field + " " + problem->what);
+    return invalid_argument_error("record_draw: " + problem->field + " " + problem->what);
   const std::uint32_t origin_x = area != nullptr ? std::uint32_t(area->offset.x) : options.viewport_x;
   const std::uint32_t origin_y = area != nullptr ? std::uint32_t(area->offset.y) : options.viewport_y;
   if (options.scene_depth >= 0 && static_cast<std::size_t>(options.scene_depth) >= scene_depths_.size())
-    return invalid("record_draw: scene_depth " + std::to_string(options.scene_depth) + " is not a registered view (" +
-                   std::to_string(scene_depths_.size()) + " registered with set_scene_depth)");
+    return invalid_argument_error("record_draw: scene_depth " + std::to_string(options.scene_depth) +
+                                  " is not a registered view (" + std::to_string(scene_depths_.size()) +
+                                  " registered with set_scene_depth)");
   if (!ready_to_draw())
-    return invalid("record_draw: record_simulation must be recorded (and submitted first) before the first draw");
+    return invalid_argument_error(
+        "record_draw: record_simulation must be recorded (and submitted first) before the first draw");
   return capture_errors([&] {
     if (area != nullptr) {
       VkViewport viewport{};
@@ -108,7 +109,8 @@ Result<bool> VisualizerBase::set_scene_depth(std::span<const VkImageView> views)
 }
 
 Result<IndicatorRing> VisualizerBase::indicator_ring() {
-  if (!ready_to_draw()) return invalid("indicator_ring: record_simulation must be recorded before the ring is read");
+  if (!ready_to_draw())
+    return invalid_argument_error("indicator_ring: record_simulation must be recorded before the ring is read");
   const gpu::IndicatorView view = indicator_view();
   const World& world = scene_.world();
   const draw::DisplayFrame frame = draw::DisplayFrame::from(world, steps_run(), world.config.display, false);

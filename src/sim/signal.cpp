@@ -3,6 +3,7 @@
 // (docs/model.md#loudness-from-the-signal). A millisecond resolves a
 // gunshot's attack; a three-minute track is 180,000 doubles, not the
 // 8.6 million samples.
+#include "core/invalid_argument.h"
 #include "soundpaint/signal.h"
 
 #include <algorithm>
@@ -18,8 +19,6 @@ constexpr double kMinRate = 1000.0, kMaxRate = 768000.0;
 constexpr unsigned kMaxChannels = 8;
 constexpr double kMinHop = 0.0005, kMaxHop = 1.0;
 constexpr double kEdge = 1e-6;  // blocks: how near a block's start a position counts as in it
-
-Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
 
 // Checks what every PCM layout shares; empty when fine.
 std::string pcm_problem(std::size_t count, double sample_rate, unsigned channels) {
@@ -41,7 +40,7 @@ Result<std::vector<double>> block_powers(std::size_t count, double sample_rate, 
   std::vector<double> powers((count + block_values - 1) / block_values, 0.0);
   for (std::size_t i = 0; i < count; ++i) {
     const double x = to_unit(i);
-    if (!std::isfinite(x)) return invalid("sample " + std::to_string(i) + " is not finite");
+    if (!std::isfinite(x)) return invalid_argument_error("sample " + std::to_string(i) + " is not finite");
     powers[i / block_values] += x * x;
   }
   // A last, partial block is padded with silence: the sound has ended.
@@ -59,11 +58,11 @@ template <class Sample, class ToUnit>
 Result<BlockPowers> pcm_powers(const char* what, std::span<const Sample> samples, double sample_rate, unsigned channels,
                                ToUnit to_unit) {
   if (std::string problem = pcm_problem(samples.size(), sample_rate, channels); !problem.empty())
-    return invalid(std::string(what) + ": " + problem);
+    return invalid_argument_error(std::string(what) + ": " + problem);
   std::size_t frames_per_block = 0;
   auto powers = block_powers(
       samples.size(), sample_rate, channels, [&](std::size_t i) { return to_unit(samples[i]); }, frames_per_block);
-  if (!powers) return invalid(std::string(what) + ": " + powers.error().message);
+  if (!powers) return invalid_argument_error(std::string(what) + ": " + powers.error().message);
   const double frames = static_cast<double>(samples.size() / channels);
   return BlockPowers{std::move(powers).value(), static_cast<double>(frames_per_block) / sample_rate,
                      frames / sample_rate};
@@ -99,13 +98,15 @@ Result<Signal> Signal::from_pcm8(std::span<const std::uint8_t> samples, double s
 
 Result<Signal> Signal::from_levels(std::span<const float> levels_db, double hop_seconds) {
   if (!(hop_seconds >= kMinHop && hop_seconds <= kMaxHop))
-    return invalid("Signal::from_levels: hop_seconds must be in [0.0005, 1], got " + std::to_string(hop_seconds));
-  if (levels_db.empty()) return invalid("Signal::from_levels: no levels");
+    return invalid_argument_error("Signal::from_levels: hop_seconds must be in [0.0005, 1], got " +
+                                  std::to_string(hop_seconds));
+  if (levels_db.empty()) return invalid_argument_error("Signal::from_levels: no levels");
   std::vector<double> powers(levels_db.size());
   for (std::size_t k = 0; k < levels_db.size(); ++k) {
     const double level = levels_db[k];
     if (std::isnan(level) || level == std::numeric_limits<double>::infinity())
-      return invalid("Signal::from_levels: level " + std::to_string(k) + " must be a number or -infinity");
+      return invalid_argument_error("Signal::from_levels: level " + std::to_string(k) +
+                                    " must be a number or -infinity");
     powers[k] = std::pow(10.0, level / 10.0);  // -infinity: 0
   }
   return Signal(powers, hop_seconds, hop_seconds * static_cast<double>(levels_db.size()));

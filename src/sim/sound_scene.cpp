@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "core/invalid_argument.h"
 #include "core/finite.h"
 #include "display/display_checks.h"
 #include "sim/geometry_update.h"
@@ -20,11 +21,9 @@
 namespace sp {
 namespace {
 
-Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
-
 Result<bool> check_duration(const char* what, double duration) {
   if (!(duration >= 0.0) || !std::isfinite(duration))
-    return invalid(std::string(what) + ": duration must be finite and >= 0");
+    return invalid_argument_error(std::string(what) + ": duration must be finite and >= 0");
   return true;
 }
 
@@ -34,7 +33,7 @@ Result<bool> check_source_for(const char* what, const SourceDesc& source, std::u
     check_source(source, id);  // names the id the source has or would get
     return true;
   });
-  if (!checked) return invalid(std::string(what) + ": " + checked.error().message);
+  if (!checked) return invalid_argument_error(std::string(what) + ": " + checked.error().message);
   return true;
 }
 
@@ -86,14 +85,14 @@ bool SoundScene::geometry_pending() const {
 Result<bool> SoundScene::check_id(const char* what, std::uint32_t id) const {
   const std::vector<bool>& slots = inbox_->slot_taken;
   if (id >= slots.size())
-    return invalid(std::string(what) + ": unknown source id " + std::to_string(id) + " (there are " +
-                   std::to_string(slots.size()) + " source slots)");
-  if (!slots[id]) return invalid(std::string(what) + ": source " + std::to_string(id) + " was removed");
+    return invalid_argument_error(std::string(what) + ": unknown source id " + std::to_string(id) + " (there are " +
+                                  std::to_string(slots.size()) + " source slots)");
+  if (!slots[id]) return invalid_argument_error(std::string(what) + ": source " + std::to_string(id) + " was removed");
   return true;
 }
 
 Result<bool> SoundScene::set_listener(Vec3 position) {
-  if (!all_finite(position)) return invalid("set_listener: position must be finite");
+  if (!all_finite(position)) return invalid_argument_error("set_listener: position must be finite");
   std::lock_guard lock(inbox_->mutex);
   inbox_->commands.emplace_back(detail::SetListener{position});
   inbox_->listener = position;
@@ -129,7 +128,7 @@ Result<bool> SoundScene::update_source(std::uint32_t id, const SourceDesc& sourc
 Result<bool> SoundScene::move_source(std::uint32_t id, Vec3 position) {
   std::lock_guard lock(inbox_->mutex);
   if (auto known = check_id("move_source", id); !known) return known;
-  if (!all_finite(position)) return invalid("move_source: position must be finite");
+  if (!all_finite(position)) return invalid_argument_error("move_source: position must be finite");
   inbox_->commands.emplace_back(detail::MoveSource{id, position});
   return true;
 }
@@ -180,14 +179,16 @@ Result<bool> SoundScene::set_display(const DisplaySettings& settings) {
 Result<bool> SoundScene::set_instance_transform(std::uint32_t instance, const Mat4& transform) {
   const char* what = "set_instance_transform";
   if (instance >= instance_triangles_.size())
-    return invalid(std::string(what) + ": unknown instance " + std::to_string(instance) + " (the scene has " +
-                   std::to_string(instance_triangles_.size()) + " moving parts)");
+    return invalid_argument_error(std::string(what) + ": unknown instance " + std::to_string(instance) +
+                                  " (the scene has " + std::to_string(instance_triangles_.size()) + " moving parts)");
   // The names and rest pose never change after construction: read without the lock.
   const std::string name = "instance " + std::to_string(instance) + " (\"" + world_.instance_names[instance] + "\")";
   const detail::WorldGeometry& geometry = *std::as_const(world_.geometry);
-  if (!all_finite(transform)) return invalid(std::string(what) + ": " + name + ": the transform must be finite");
+  if (!all_finite(transform))
+    return invalid_argument_error(std::string(what) + ": " + name + ": the transform must be finite");
   if (const std::optional<std::string> problem = placement_problem(geometry, instance_triangles_[instance], transform))
-    return invalid(std::string(what) + ": " + name + ": refused, " + *problem + "; the previous transform stays");
+    return invalid_argument_error(std::string(what) + ": " + name + ": refused, " + *problem +
+                                  "; the previous transform stays");
   std::lock_guard lock(inbox_->mutex);
   inbox_->commands.emplace_back(detail::PlaceInstance{instance, transform});
   inbox_->transform_queued = true;

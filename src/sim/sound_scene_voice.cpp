@@ -7,17 +7,14 @@
 #include <string>
 #include <utility>
 
+#include "core/invalid_argument.h"
 #include "core/finite.h"
 #include "sim/scene_inbox.h"
 #include "soundpaint/signal.h"
 #include "soundpaint/simulation.h"
 
 namespace sp {
-namespace {
-
-Error invalid(std::string message) { return Error{ErrorCode::InvalidArgument, std::move(message), 0}; }
-
-}  // namespace
+namespace {}  // namespace
 
 Result<bool> SoundScene::set_signal(std::uint32_t id, std::shared_ptr<const Signal> signal, bool loop) {
   std::lock_guard lock(inbox_->mutex);
@@ -27,11 +24,11 @@ Result<bool> SoundScene::set_signal(std::uint32_t id, std::shared_ptr<const Sign
 }
 
 Result<bool> SoundScene::set_voice(std::uint32_t id, const VoiceState& state) {
-  if (!all_finite(state.position)) return invalid("set_voice: position must be finite");
+  if (!all_finite(state.position)) return invalid_argument_error("set_voice: position must be finite");
   if (!(state.gain >= 0.0f) || !std::isfinite(state.gain))
-    return invalid("set_voice: gain must be finite and >= 0, got " + std::to_string(state.gain));
+    return invalid_argument_error("set_voice: gain must be finite and >= 0, got " + std::to_string(state.gain));
   if (!std::isfinite(state.signal_position))
-    return invalid("set_voice: signal_position must be finite (negative: keep the running position)");
+    return invalid_argument_error("set_voice: signal_position must be finite (negative: keep the running position)");
   std::lock_guard lock(inbox_->mutex);
   if (auto known = check_id("set_voice", id); !known) return known;
   inbox_->commands.emplace_back(detail::SetVoice{id, state});
@@ -40,7 +37,8 @@ Result<bool> SoundScene::set_voice(std::uint32_t id, const VoiceState& state) {
 
 Result<bool> SoundScene::set_voice_level(std::uint32_t id, double level_db) {
   if (level_db == std::numeric_limits<double>::infinity())
-    return invalid("set_voice_level: level_db must be a level in dB, -infinity (silence) or NaN (none), not +infinity");
+    return invalid_argument_error(
+        "set_voice_level: level_db must be a level in dB, -infinity (silence) or NaN (none), not +infinity");
   std::lock_guard lock(inbox_->mutex);
   if (auto known = check_id("set_voice_level", id); !known) return known;
   inbox_->commands.emplace_back(detail::SetVoiceLevel{id, level_db});
@@ -49,7 +47,8 @@ Result<bool> SoundScene::set_voice_level(std::uint32_t id, double level_db) {
 
 Result<bool> SoundScene::feed_voice(std::uint32_t id, std::span<const float> samples) {
   for (std::size_t i = 0; i < samples.size(); ++i)
-    if (!std::isfinite(samples[i])) return invalid("feed_voice: sample " + std::to_string(i) + " is not finite");
+    if (!std::isfinite(samples[i]))
+      return invalid_argument_error("feed_voice: sample " + std::to_string(i) + " is not finite");
   return set_voice_level(id, rms_level_db(samples));
 }
 
