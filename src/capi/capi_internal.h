@@ -166,6 +166,16 @@ inline SoundScene& scene_of(const sp_sound_scene* scene, const char* function) {
   return *scene->scene;
 }
 
+// The destroy protocol of a handle that one thread uses at a time (a
+// simulation steps, a visualizer records): not while that thread is inside
+// a call on it (`guard`, claimed for good), then as destroy_handle.
+template <class Owner, class Guard>
+void destroy_guarded_handle(HandleKind kind, Owner* owner, Guard Owner::*guard, const char* function,
+                            const char* what) {
+  if (owner != nullptr && is_live(kind, owner)) (owner->*guard).claim(function);
+  destroy_handle(kind, owner, function, what);
+}
+
 // *out = the sound scene a live simulation or visualizer owns (the
 // `sp_*_scene` getters); `what` names the owner's parameter.
 template <class Owner>

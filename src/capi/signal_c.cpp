@@ -20,7 +20,6 @@ namespace {
 using sp::capi::guarded;
 using sp::capi::HandleKind;
 using sp::capi::require;
-using sp::capi::scene_of;
 using sp::capi::unwrap;
 
 const sp_signal& signal_of(const sp_signal* signal, const char* fn) {
@@ -102,7 +101,7 @@ sp_result sp_signal_level_db(const sp_signal* signal, double position, double wi
 sp_result sp_sound_scene_set_signal(sp_sound_scene* scene, uint32_t id, const sp_signal* signal, int loop) noexcept {
   return guarded([&] {
     const char* fn = "sp_sound_scene_set_signal";
-    sp::SoundScene& s = scene_of(scene, fn);
+    sp::SoundScene& s = sp::capi::scene_of(scene, fn);
     std::shared_ptr<const sp::Signal> attached;
     if (signal != nullptr) attached = signal_of(signal, fn).signal;
     unwrap(s.set_signal(id, std::move(attached), loop != 0));
@@ -123,7 +122,7 @@ void sp_voice_state_init(sp_voice_state* state) noexcept {
 sp_result sp_sound_scene_set_voice(sp_sound_scene* scene, uint32_t id, const sp_voice_state* state) noexcept {
   return guarded([&] {
     const char* fn = "sp_sound_scene_set_voice";
-    sp::SoundScene& s = scene_of(scene, fn);
+    sp::SoundScene& s = sp::capi::scene_of(scene, fn);
     require(state != nullptr, fn, "state is NULL");
     sp::VoiceState v;
     v.position = sp::Vec3(state->position[0], state->position[1], state->position[2]);
@@ -135,13 +134,14 @@ sp_result sp_sound_scene_set_voice(sp_sound_scene* scene, uint32_t id, const sp_
 }
 
 sp_result sp_sound_scene_set_voice_level(sp_sound_scene* scene, uint32_t id, double level_db) noexcept {
-  return guarded([&] { unwrap(scene_of(scene, "sp_sound_scene_set_voice_level").set_voice_level(id, level_db)); });
+  return guarded(
+      [&] { unwrap(sp::capi::scene_of(scene, "sp_sound_scene_set_voice_level").set_voice_level(id, level_db)); });
 }
 
 sp_result sp_sound_scene_feed_voice(sp_sound_scene* scene, uint32_t id, const float* samples, uint64_t count) noexcept {
   return guarded([&] {
     const char* fn = "sp_sound_scene_feed_voice";
-    sp::SoundScene& s = scene_of(scene, fn);
+    sp::SoundScene& s = sp::capi::scene_of(scene, fn);
     unwrap(s.feed_voice(id, samples_of(samples, count, fn)));
   });
 }

@@ -340,11 +340,10 @@ sp_result sp_simulation_destroy(sp_simulation* simulation) noexcept {
   const sp::capi::ValidationRelay relay(&*context);
   sp_context* log_to = &*context;
   return guarded_in(log_to, [&] {
-    const char* fn = "sp_simulation_destroy";
     // Not while this handle's other thread steps or reads it (a call on its
     // sound scene meanwhile is the host's to prevent: soundpaint.h).
-    if (simulation != nullptr && sp::capi::is_live(HandleKind::Simulation, simulation)) simulation->stepping.claim(fn);
-    sp::capi::destroy_handle(HandleKind::Simulation, simulation, fn, "simulation");
+    sp::capi::destroy_guarded_handle(HandleKind::Simulation, simulation, &sp_simulation::stepping,
+                                     "sp_simulation_destroy", "simulation");
   });
 }
 

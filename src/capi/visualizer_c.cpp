@@ -159,9 +159,8 @@ sp_result sp_visualizer_create_in(sp_context* context, const sp_host_vulkan* hos
 
 sp_result sp_visualizer_destroy(sp_visualizer* visualizer) noexcept {
   return guarded([&] {
-    const char* fn = "sp_visualizer_destroy";
-    if (visualizer != nullptr && sp::capi::is_live(HandleKind::Visualizer, visualizer)) visualizer->rendering.claim(fn);
-    sp::capi::destroy_handle(HandleKind::Visualizer, visualizer, fn, "visualizer");
+    sp::capi::destroy_guarded_handle(HandleKind::Visualizer, visualizer, &sp_visualizer::rendering,
+                                     "sp_visualizer_destroy", "visualizer");
   });
 }
 
