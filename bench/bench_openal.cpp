@@ -90,14 +90,16 @@ int main(int argc, char** argv) {
       return 1;
     }
     for (int k = 0; k < n; ++k) {
-      alSourcei(sources[k], AL_BUFFER, static_cast<ALint>(buffer));
-      alSourcei(sources[k], AL_LOOPING, AL_TRUE);
-      alSource3f(sources[k], AL_POSITION, float(k % 16) - 8.0f, 1.0f, float(k / 16) - 8.0f);
-      alSourcePlay(sources[k]);
+      const ALuint source = sources[static_cast<std::size_t>(k)];
+      alSourcei(source, AL_BUFFER, static_cast<ALint>(buffer));
+      alSourcei(source, AL_LOOPING, AL_TRUE);
+      alSource3f(source, AL_POSITION, float(k % 16) - 8.0f, 1.0f, float(k / 16) - 8.0f);
+      alSourcePlay(source);
     }
     std::vector<double> us;
     for (int frame = 0; frame < options.warmup + options.frames; ++frame) {
-      for (int k = 0; k < n; k += 8) alSource3f(sources[k], AL_POSITION, float(frame % 7), 1.0f, float(k % 5));
+      for (int k = 0; k < n; k += 8)
+        alSource3f(sources[static_cast<std::size_t>(k)], AL_POSITION, float(frame % 7), 1.0f, float(k % 5));
       const auto start = std::chrono::steady_clock::now();
       auto report = adapter.update();
       const auto end = std::chrono::steady_clock::now();
