@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "bvh/bvh.h"
@@ -142,6 +143,64 @@ TEST_P(SetConfig, SourcesTheHostAddedAndMovedKeepEmittingAndConfigSourcesAreNotR
   EXPECT_EQ(world.sources[added].position, Vec3(-2.0f, 1.0f, -1.0f));
   EXPECT_TRUE(world.config.sources.empty()) << "world().config keeps the sources it was made with";
   EXPECT_EQ(world.config.ray_budget, 300u);
+}
+
+// The 6 x 3 x 5 m closed mirror room split at x in [0.9, 1.1] by a movable
+// wall (moving part 0) spanning its whole cross-section, the scene's source
+// on the -x side (as test_live_scene.cpp's).
+Scene room_with_movable_wall() {
+  Scene scene = test::closed_room();
+  scene.sources = {test::source_at({-1.5f, 1.5f, 0.0f})};
+  const std::size_t static_triangles = scene.triangle_count();
+  test::add_box(scene, {0.9f, 0.0f, -2.5f}, {1.1f, 3.0f, 2.5f}, "door");
+  scene.instance_names = {"sliding wall"};
+  scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+  for (std::size_t t = static_triangles; t < scene.triangle_count(); ++t) scene.triangle_instances[t] = 0;
+  return scene;
+}
+
+TEST_P(SetConfig, VoicesPlayWindowsTheListenerAndAMovedWallStay) {
+  Config config = base_config();
+  config.listener_position = glm::vec3(-2, 1.5f, 0);
+  config.max_bounces = 3;
+  config.layers["concrete"] = {1.0f, 5.0f};
+  config.layers["door"] = {1.0f, 5.0f};
+  auto sim = make(room_with_movable_wall(), config);
+  SoundScene& scene = sim->scene();
+  SourceDesc silent = test::source_at({-2.0f, 1.0f, 1.0f});
+  silent.duration = 0.0;  // sounds only when the host says so
+  const std::uint32_t voice = scene.add_source(silent).value();
+  ASSERT_TRUE(scene.set_voice(voice, VoiceState{{-2.5f, 1.0f, 1.0f}, true}).ok());
+  silent.position = {-1.0f, 1.0f, -1.0f};
+  const std::uint32_t played = scene.add_source(silent).value();
+  ASSERT_TRUE(scene.play(played, 10.0).ok());
+  ASSERT_TRUE(scene.set_listener({-1.0f, 1.5f, 0.5f}).ok());
+  // Slid 10 m up, above the ceiling: rays cross x = 1 to the far wall at x = 3.
+  const Mat4 slid_up = glm::translate(glm::mat4(1.0f), {0, 10, 0});
+  ASSERT_TRUE(scene.set_instance_transform(0, slid_up).ok());
+  step(*sim);  // applies all of it (and refits the BVH)
+  const std::uint64_t builds = bvh_builds();
+
+  config.ray_budget = 300;
+  config.air_attenuation = 0.005f;
+  set(*sim, config);
+  std::set<std::uint32_t> emitting;
+  std::size_t beyond_the_wall = 0;
+  for (int n = 0; n < 2; ++n) {
+    step(*sim);
+    for (const Indicator& ind : sim->last_step_indicators().value()) {
+      emitting.insert(ind.source_id);
+      beyond_the_wall += ind.position.x > 1.1f ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(emitting, (std::set<std::uint32_t>{0u, voice, played}));
+  EXPECT_GT(beyond_the_wall, 20u);
+  const World& world = sim->world();
+  EXPECT_EQ(world.listener, Vec3(-1.0f, 1.5f, 0.5f));
+  EXPECT_EQ(world.sources[voice].position, Vec3(-2.5f, 1.0f, 1.0f));
+  ASSERT_EQ(world.instance_transforms.size(), 1u);
+  EXPECT_EQ(world.instance_transforms[0], slid_up);
+  EXPECT_EQ(bvh_builds(), builds);
 }
 
 TEST_P(SetConfig, AShrunkRingKeepsTheNewestSpotsThatFitAndAGrownOneKeepsThemAll) {
