@@ -113,6 +113,39 @@ class Simulator {
   // Steps run so far (== the index of the next step).
   virtual std::uint64_t steps_run() const = 0;
 
+  // Takes other settings from the next step on, between steps, on the
+  // thread that steps; no new World or simulator, and the level is not
+  // built again (a first switch to diffraction finds the edges sound bends
+  // round, once for every world of the level).
+  // Changes: every key of `config` but those below (ray budget and its
+  // split, bounces, the layers' acoustics, air, diffraction, cues, display,
+  // signal law, seed, CPU traversal, ...). Storage sized by ray_budget,
+  // max_bounces and max_indicators is resized: the CPU backend's ring, the
+  // GPU backend's buffers and descriptor set (its kernels are kept).
+  // Stays:
+  // - the sources: every slot, whether it came from the scene, from the
+  //   config the World was made with or from the host (add_source, emit),
+  //   keeps its id, description, play window, voice and what its guide
+  //   learned (Config::cues). `config.sources` and `listener_position` are
+  //   not read: they seed a new World, and world().config keeps those it
+  //   was made with. Change sources and the listener through scene();
+  // - the listener, moving parts' transforms, steps_run(), stats() and
+  //   last_step_indicators();
+  // - the ring's spots, in order, as many of the newest as the new
+  //   max_indicators holds (a smaller ring drops those that would have
+  //   faded first); they age by the new indicator_lifetime.
+  // Called before the first step, the simulator then steps exactly as one
+  // created with `config` would (the CPU backend bit for bit).
+  // Errors, after which the simulator is exactly as it was: InvalidConfig
+  // naming the key (make_world's checks, and a dt other than the running
+  // one once a step has run: step n runs at n * dt); LimitExceeded, naming
+  // the keys, when the config's rays and indicators could need more than
+  // the memory budget the simulator was created with, or (GPU) a buffer
+  // beyond a device limit, naming the buffer; Vulkan: a device failure
+  // (as after a failed step, go on with a new simulator). A CPU simulator
+  // stopped by a failed step returns that step's error.
+  virtual Result<bool> set_config(const Config& config) = 0;
+
   // Shorthands for scene().set_listener / scene().play.
   Result<bool> set_listener(Vec3 position) { return scene().set_listener(position); }
   Result<bool> play(std::uint32_t source_id, double duration) { return scene().play(source_id, duration); }

@@ -197,6 +197,12 @@ class SoundScene {
   // Returns what changed (nothing when nothing moved). Must not run while
   // a step reads the BVH.
   BvhChanges update_geometry();
+  // Simulator::set_config's change to the World, already checked and
+  // resolved (src/sim/config_change.h): takes the queued changes first, as
+  // set_display does, then replaces the config and the layers' acoustics
+  // and re-resolves the sources' colours in the new palette. The sources,
+  // play windows, voices, listener and moving parts stay as they are.
+  void apply_config(Config config, std::vector<LayerProperties> layer_properties);
 
   // With the inbox's mutex held: applies the queued changes to world_.
   void take_changes();

@@ -29,8 +29,8 @@
  *   by threads creating simulations from it. A game drives one simulation
  *   (or visualizer) from two threads, and may:
  *   - Render thread, one call at a time: sp_simulation_step,
- *     sp_simulation_live_indicators, sp_simulation_stats and
- *     sp_simulation_destroy (and every sp_visualizer_* call but
+ *     sp_simulation_set_config, sp_simulation_live_indicators,
+ *     sp_simulation_stats and sp_simulation_destroy (and every sp_visualizer_* call but
  *     sp_visualizer_scene and sp_visualizer_backend, soundpaint_vulkan.h).
  *     A call made while another thread is inside one of these on the same
  *     handle is refused with SP_ERROR_INVALID_ARGUMENT ("another thread is
@@ -472,6 +472,25 @@ SP_API sp_result sp_simulation_play(sp_simulation* simulation, uint32_t source_i
  * every later step returns the same error (indicators and stats still
  * describe the steps before it); destroy it and create another. */
 SP_API sp_result sp_simulation_step(sp_simulation* simulation) SP_NOEXCEPT;
+
+/* Takes another configuration from the next step on (sp::Simulator::
+ * set_config, include/soundpaint/simulation.h), without loading or
+ * building the level again. config_json as for sp_simulation_create (NULL:
+ * every default): the whole configuration, so a key it leaves out takes its
+ * default, not the running value, and the ray_budget of the creation's
+ * sp_simulation_options no longer applies. The simulation keeps its sound
+ * scene: every source (the scene's, the creation config's and those added
+ * since, by id; the new "sources" and "listener" are not read), play
+ * window, voice, the listener and moving parts; and the spots on screen,
+ * as many of the newest as the new "max_indicators" holds. "dt" cannot
+ * change once a step has run. Render thread (see Thread-safety above).
+ * Errors, after which the simulation is as it was: SP_ERROR_INVALID_ARGUMENT
+ * (NULL or not live; another thread inside a render-thread call on it),
+ * SP_ERROR_INVALID_CONFIG (the message names the key),
+ * SP_ERROR_LIMIT_EXCEEDED (over the creation's memory budget, naming the
+ * keys, or a device limit); SP_ERROR_VULKAN (a device failure); a
+ * simulation stopped by a failed step returns that step's error. */
+SP_API sp_result sp_simulation_set_config(sp_simulation* simulation, const char* config_json) SP_NOEXCEPT;
 
 /* *out (non-NULL) receives the number of source slots: source ids are
  * 0 .. count - 1 (scene's, then config's, then added ones, counted from the

@@ -383,6 +383,20 @@ sp_result sp_simulation_step(sp_simulation* simulation) noexcept {
   });
 }
 
+sp_result sp_simulation_set_config(sp_simulation* simulation, const char* config_json) noexcept {
+  sp_context* log_to = context_of(simulation);
+  const sp::capi::ValidationRelay relay(log_to);
+  return guarded_in(log_to, [&] {
+    const char* fn = "sp_simulation_set_config";
+    require_live(HandleKind::Simulation, simulation, fn, "simulation");
+    const auto one_thread = simulation->stepping.enter(fn, simulation->simulator->scene());
+    // The whole configuration, as sp_simulation_create reads it.
+    sp::Config config;
+    if (config_json != nullptr) config = unwrap(sp::parse_config(config_json, "config_json"));
+    unwrap(simulation->simulator->set_config(config));
+  });
+}
+
 sp_result sp_simulation_source_count(const sp_simulation* simulation, uint32_t* out) noexcept {
   return guarded([&] {
     const char* fn = "sp_simulation_source_count";

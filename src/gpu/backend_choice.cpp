@@ -48,7 +48,7 @@ Result<std::unique_ptr<Simulator>> create_simulator_on(vk::Context& context, Wor
                     return true;
                   });
                   if (!fits) return fits.error();
-                  return create_simulator(w, context);
+                  return create_simulator(w, context, cpu.memory_budget_bytes);
                 });
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "admit.comp.spv.h"
@@ -61,22 +62,85 @@ class StagingPlan {
   VkDeviceSize size_ = 0;
 };
 
+// The admission's buffer: histograms and plan, the order bitmap and its
+// running counts, and the list of tied indicators (sp_ring.h).
+std::uint64_t admission_words(const ConfigSizes& sizes) {
+  const std::uint64_t order_words = SP_ORDER_WORDS(std::uint64_t{sizes.max_rays}, std::uint64_t{sizes.iterations});
+  return SP_ADMISSION_BUFFER_SIZE + 2 * order_words + sizes.capture_capacity;
+}
+
+struct SizedSpec {
+  VkDeviceSize bytes;
+  VkBufferUsageFlags usage;
+  const char* name;
+};
+
+SizedSpec sized_spec(const SizedBuffer& buffer, const ConfigSizes& s) {
+  switch (buffer.binding) {
+    case SP_BINDING_RAYS:
+      return {bytes<shader::RayState>(s.max_rays), kStorage, "rays"};
+    case SP_BINDING_HITS:
+      return {bytes<shader::CastResult>(s.max_rays), kStorage, "hits"};
+    case SP_BINDING_QUEUES:
+      return {bytes<std::uint32_t>(2ull * s.max_rays), kStorage, "ray queues"};
+    case SP_BINDING_RING:
+      return {bytes<shader::Indicator>(s.ring_capacity), kStorage | kTransfer | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+              "indicator ring"};
+    case SP_BINDING_CAPTURE:
+      return {bytes<shader::Indicator>(s.capture_capacity), kStorage | kTransfer, "indicator capture"};
+    case SP_BINDING_ADMISSION:
+      return {bytes<std::uint32_t>(admission_words(s)), kStorage | kTransfer, "ring admission histogram"};
+    case SP_BINDING_CONNECT:
+      return {bytes<std::uint32_t>(s.capture_capacity), kStorage, "connect queue"};
+    default:
+      throw std::logic_error("binding " + std::to_string(buffer.binding) + " is not sized by the config");
+  }
+}
+
 }  // namespace
 
-GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources) {
-  const Config& config = world.config;
-  max_rays = std::max<std::uint32_t>(1, config.ray_budget);
+const SizedBuffer kSizedBuffers[kSizedBufferCount] = {
+    {&GpuResources::rays, SP_BINDING_RAYS},
+    {&GpuResources::hits, SP_BINDING_HITS},
+    {&GpuResources::queues, SP_BINDING_QUEUES},
+    {&GpuResources::ring, SP_BINDING_RING},
+    {&GpuResources::capture, SP_BINDING_CAPTURE},
+    {&GpuResources::admission, SP_BINDING_ADMISSION},
+    {&GpuResources::connect_queue, SP_BINDING_CONNECT},
+};
+
+ConfigSizes config_sizes(const vk::Context& context, const Config& config) {
+  ConfigSizes sizes;
+  sizes.max_rays = std::max<std::uint32_t>(1, config.ray_budget);
   // A ray casts at most twice per interaction (a closest-hit cast and, when
   // it penetrates, a matter query) plus a final closest-hit cast, and leaves at most one indicator per cast.
-  iterations = 2 * config.max_bounces + 1;
-  capture_capacity = max_rays * iterations;
-  ring_capacity = config.max_indicators;
-  layer_count = static_cast<std::uint32_t>(world.layer_names.size());
+  sizes.iterations = 2 * config.max_bounces + 1;
+  sizes.capture_capacity = sizes.max_rays * sizes.iterations;
+  sizes.ring_capacity = config.max_indicators;
   const std::uint32_t max_groups = context.properties().limits.maxComputeWorkGroupCount[0];
-  if ((std::uint64_t{max_rays} + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE > max_groups)
+  if ((std::uint64_t{sizes.max_rays} + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE > max_groups)
     throw Exception(ErrorCode::LimitExceeded, "ray_budget " + std::to_string(config.ray_budget) +
                                                   " needs more workgroups than the device's limit of " +
                                                   std::to_string(max_groups));
+  return sizes;
+}
+
+VkDeviceSize sized_buffer_bytes(const SizedBuffer& buffer, const ConfigSizes& sizes) {
+  return sized_spec(buffer, sizes).bytes;
+}
+
+vk::Buffer create_sized_buffer(const vk::Context& context, const SizedBuffer& buffer, const ConfigSizes& sizes) {
+  const SizedSpec spec = sized_spec(buffer, sizes);
+  return vk::Buffer(context, spec.bytes, spec.usage, vk::MemoryUsage::DeviceLocal, spec.name);
+}
+
+GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources) {
+  const ConfigSizes sized = config_sizes(context, world.config);
+  max_rays = sized.max_rays;
+  iterations = sized.iterations;
+  capture_capacity = sized.capture_capacity;
+  ring_capacity = sized.ring_capacity;
+  layer_count = static_cast<std::uint32_t>(world.layer_names.size());
 
   // Moving parts may force a rebuild, whose node count can differ; a binary
   // tree over n triangles never has more than 2n - 1 nodes.
@@ -95,32 +159,17 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
       world.geometry->bvh.edges.empty() ? std::vector<shader::TriangleEdges>(1) : world.geometry->bvh.edges;
   edges = vk::Buffer(context, bytes<shader::TriangleEdges>(edge_table.size()), kStorage | kTransfer,
                      vk::MemoryUsage::DeviceLocal, "exposed edges");
+  edge_count = world.geometry->bvh.edges.size();
   layers = vk::Buffer(context, bytes<shader::LayerAcoustics>(layer_table.size()), kStorage | kTransfer,
                       vk::MemoryUsage::DeviceLocal, "layer acoustics");
   step_input = vk::Buffer(context, sizeof(shader::StepInput) + bytes<shader::StepSource>(source_capacity),
                           kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "step input");
-  rays = vk::Buffer(context, bytes<shader::RayState>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "rays");
-  hits = vk::Buffer(context, bytes<shader::CastResult>(max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "hits");
-  queues =
-      vk::Buffer(context, bytes<std::uint32_t>(2ull * max_rays), kStorage, vk::MemoryUsage::DeviceLocal, "ray queues");
+  for (const SizedBuffer& buffer : kSizedBuffers) this->*buffer.member = create_sized_buffer(context, buffer, sized);
   control = vk::Buffer(context, sizeof(shader::Control), kStorage | kTransfer | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                        vk::MemoryUsage::DeviceLocal, "control");
-  ring = vk::Buffer(context, bytes<shader::Indicator>(ring_capacity),
-                    kStorage | kTransfer | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vk::MemoryUsage::DeviceLocal,
-                    "indicator ring");
-  capture = vk::Buffer(context, bytes<shader::Indicator>(capture_capacity), kStorage | kTransfer,
-                       vk::MemoryUsage::DeviceLocal, "indicator capture");
   // per layer: SP_COUNTERS_PER_LAYER step counters, then as many (lo, hi) totals
   counters = vk::Buffer(context, bytes<std::uint32_t>(layer_count * SP_COUNTERS_PER_LAYER * 3), kStorage | kTransfer,
                         vk::MemoryUsage::DeviceLocal, "layer counters");
-  const std::uint64_t order_words = SP_ORDER_WORDS(std::uint64_t{max_rays}, std::uint64_t{iterations});
-  // The admission's buffer: histograms and plan, the order bitmap and its
-  // running counts, and the list of tied indicators (sp_ring.h).
-  const std::uint64_t admission_words = SP_ADMISSION_BUFFER_SIZE + 2 * order_words + capture_capacity;
-  admission = vk::Buffer(context, bytes<std::uint32_t>(admission_words), kStorage | kTransfer,
-                         vk::MemoryUsage::DeviceLocal, "ring admission histogram");
-  connect_queue = vk::Buffer(context, bytes<std::uint32_t>(capture_capacity), kStorage, vk::MemoryUsage::DeviceLocal,
-                             "connect queue");
   guide = vk::Buffer(context, bytes<std::uint32_t>(std::uint64_t{source_capacity} * SP_GUIDE_STRIDE),
                      kStorage | kTransfer, vk::MemoryUsage::DeviceLocal, "source guides");
   control_readback =
@@ -129,7 +178,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   std::vector<shader::Control> initial(1);
   initial[0].draw_vertex_count = SP_INDICATOR_QUAD_VERTICES;  // one quad per indicator instance
   std::vector<std::uint32_t> zeros(layer_count * SP_COUNTERS_PER_LAYER * 3, 0);
-  const std::vector<std::uint32_t> empty_admission(admission_words, 0u);
+  const std::vector<std::uint32_t> empty_admission(admission_words(sized), 0u);
   const std::vector<std::uint32_t> empty_guides(
       std::max<std::size_t>(1, std::size_t{source_capacity} * SP_GUIDE_STRIDE), 0u);
   StagingPlan staging;

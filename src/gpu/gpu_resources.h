@@ -5,6 +5,7 @@
 // recorded step (StepEngine) to copy them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +26,35 @@ struct Kernels {
   vk::ComputePipeline admit;
 };
 
+// What the config decides of the buffers' sizes: ray_budget, max_bounces
+// and max_indicators.
+struct ConfigSizes {
+  std::uint32_t max_rays = 0;          // rays per step the buffers hold (== ray_budget, at least 1)
+  std::uint32_t iterations = 0;        // wavefront iterations per step (2 * max_bounces + 1)
+  std::uint32_t capture_capacity = 0;  // indicators one step can create, worst case
+  std::uint32_t ring_capacity = 0;     // max_indicators
+};
+
+// Throws sp::Exception(LimitExceeded) when ray_budget needs more
+// workgroups than the device dispatches.
+ConfigSizes config_sizes(const vk::Context& context, const Config& config);
+
+struct GpuResources;
+
+// The buffers ConfigSizes sizes, one entry each: GpuResources creates them
+// all, Simulator::set_config again those whose size changes (gpu_resize.h).
+struct SizedBuffer {
+  vk::Buffer GpuResources::*member;
+  std::uint32_t binding;  // SP_BINDING_*
+};
+inline constexpr std::size_t kSizedBufferCount = 7;
+extern const SizedBuffer kSizedBuffers[kSizedBufferCount];
+
+// Creates `buffer` for `sizes`: its bytes, usage and name.
+vk::Buffer create_sized_buffer(const vk::Context& context, const SizedBuffer& buffer, const ConfigSizes& sizes);
+// The bytes `buffer` takes for `sizes`.
+VkDeviceSize sized_buffer_bytes(const SizedBuffer& buffer, const ConfigSizes& sizes);
+
 struct GpuResources {
   // Sizes all buffers for `world`; throws sp::Exception (LimitExceeded when
   // a buffer would exceed the device's storage-buffer range).
@@ -33,13 +63,19 @@ struct GpuResources {
   GpuResources(const GpuResources&) = delete;
   GpuResources& operator=(const GpuResources&) = delete;
 
-  std::uint32_t max_rays = 0;          // rays per step the buffers hold (== ray_budget, at least 1)
-  std::uint32_t capture_capacity = 0;  // indicators one step can create, worst case
-  std::uint32_t ring_capacity = 0;     // max_indicators
+  // As ConfigSizes, for the config the buffers were last sized for.
+  std::uint32_t max_rays = 0;
+  std::uint32_t capture_capacity = 0;
+  std::uint32_t ring_capacity = 0;
+  std::uint32_t iterations = 0;
   std::uint32_t layer_count = 0;
-  std::uint32_t iterations = 0;       // wavefront iterations per step
+  // Exposed edges the edges buffer holds: 0 while it holds the one zero
+  // entry of a world without diffraction.
+  std::size_t edge_count = 0;
   std::uint32_t node_capacity = 0;    // BVH nodes the buffer holds (a rebuild may need more than the first build)
   std::uint32_t source_capacity = 0;  // entries of the step input's source table
+
+  ConfigSizes sizes() const { return {max_rays, iterations, capture_capacity, ring_capacity}; }
 
   vk::Buffer nodes, triangles, layers;  // scene, read-only
   vk::Buffer edges;                     // exposed edges per triangle (one zero entry while diffraction is off)

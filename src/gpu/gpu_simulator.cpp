@@ -10,11 +10,15 @@
 #include <cstring>
 #include <tuple>
 
+#include "gpu/gpu_resize.h"
 #include "gpu/gpu_resources.h"
 #include "gpu/step_engine.h"
+#include "sim/config_change.h"
 #include "sim/indicator_ring.h"
 #include "sim/memory_estimate.h"
+#include "sim/sound_scene_backend.h"
 #include "sim/step_plan.h"
+#include "sim/world_geometry.h"
 #include "vk/handle.h"
 #include "vk/objects.h"
 #include "vk/vk_check.h"
@@ -36,9 +40,10 @@ void sort_canonically(std::vector<Indicator>& indicators) {
 
 class GpuSimulator final : public Simulator {
  public:
-  GpuSimulator(World world, vk::Context& context, std::unique_ptr<vk::Context> owned)
+  GpuSimulator(World world, vk::Context& context, std::unique_ptr<vk::Context> owned, std::uint64_t memory_budget_bytes)
       : owned_context_(std::move(owned)),
         context_(context),
+        memory_budget_bytes_(memory_budget_bytes),
         scene_(std::move(world)),
         engine_(context_, scene_),
         resources_(engine_.resources()) {
@@ -61,6 +66,7 @@ class GpuSimulator final : public Simulator {
   Result<bool> step() override {
     return capture_errors(
         [&] {
+          last_step_kept_.reset();
           record_one_step();
           context_.submit(command_buffer_, fence_.get());
           VkFence fence = fence_.get();
@@ -77,7 +83,42 @@ class GpuSimulator final : public Simulator {
         ErrorCode::Vulkan);
   }
 
+  // Everything that can fail is made aside first (the checked config, the
+  // new buffers, a copy of the last step's indicators when their buffer
+  // goes); one submit then carries the ring's spots and the layers'
+  // acoustics across, and moves alone commit the rest.
+  Result<bool> set_config(const Config& config) override {
+    return capture_errors(
+        [&] {
+          ConfigChange change = prepare_config_change(scene_.world(), config, steps_run_);
+          check_memory_budget(change.config, Backend::Gpu, memory_budget_bytes_);
+          const World& world = scene_.world();
+          if (change.config.diffraction.enabled) world.geometry->ensure_exposed_edges();
+          GpuResize resize(context_, resources_, change.config, world.geometry->bvh);
+          std::optional<std::vector<Indicator>> last_step;
+          if (resize.replaces_capture()) last_step = last_step_indicators().value();
+          vk::UniqueQueryPool profile_pool;
+          const std::uint32_t iterations = 2 * change.config.max_bounces + 1;
+          if (profile_pool_ && iterations != engine_.iterations())
+            profile_pool =
+                vk::create_timestamp_pool(context_, stage_queries_per_step(iterations), "soundpaint step profile");
+          const std::vector<shader::LayerAcoustics> layer_table = make_layer_table(change.layer_properties);
+          context_.submit_and_wait([&](VkCommandBuffer cmd) {
+            engine_.record_pending_uploads(cmd);
+            resize.record(cmd, resources_, last_control_, layer_table);
+          });
+
+          resize.commit(context_, resources_, last_control_);
+          detail::SoundSceneBackend::apply_config(scene_, std::move(change.config), std::move(change.layer_properties));
+          if (last_step) last_step_kept_ = std::move(last_step);
+          if (profile_pool) profile_pool_ = std::move(profile_pool);
+          return true;
+        },
+        ErrorCode::Vulkan);
+  }
+
   Result<std::vector<Indicator>> last_step_indicators() override {
+    if (last_step_kept_) return *last_step_kept_;
     return capture_errors(
         [&] {
           std::vector<Indicator> indicators(std::min(last_control_.step_indicators, resources_.capture_capacity));
@@ -214,6 +255,7 @@ class GpuSimulator final : public Simulator {
 
   std::unique_ptr<vk::Context> owned_context_;  // set when the simulator made its own
   vk::Context& context_;
+  std::uint64_t memory_budget_bytes_;  // checked again by set_config
   SoundScene scene_;
   StepEngine engine_;
   GpuResources& resources_;
@@ -226,6 +268,9 @@ class GpuSimulator final : public Simulator {
   RecordCounts profile_counts_;
   StepProfile profile_;
   shader::Control last_control_{};
+  // The last step's indicators, kept on the host when set_config replaced
+  // the buffer that held them; until the next step.
+  std::optional<std::vector<Indicator>> last_step_kept_;
   double last_gpu_ms_ = 0.0;
   std::uint64_t steps_run_ = 0;
 };
@@ -248,10 +293,11 @@ std::optional<StepProfile> last_step_profile(const Simulator& simulator) {
   return gpu->profile();
 }
 
-Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context) {
+Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context,
+                                                    std::uint64_t memory_budget_bytes) {
   return capture_errors(
       [&]() -> std::unique_ptr<Simulator> {
-        return std::make_unique<GpuSimulator>(std::move(world), context, nullptr);
+        return std::make_unique<GpuSimulator>(std::move(world), context, nullptr, memory_budget_bytes);
       },
       ErrorCode::Vulkan);
 }
@@ -272,7 +318,8 @@ Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSe
                                                  std::string(context->properties().deviceName) + ")");
         check_memory_budget(world.config, Backend::Gpu, settings.memory_budget_bytes);  // before any buffer exists
         vk::Context& ref = *context;
-        return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context));
+        return std::make_unique<gpu::GpuSimulator>(std::move(world), ref, std::move(context),
+                                                   settings.memory_budget_bytes);
       },
       ErrorCode::Vulkan);
 }

@@ -13,8 +13,10 @@
 namespace sp::gpu {
 
 // Creates a GPU simulator on `context`, which must outlive it (tests share
-// one context per binary this way).
-Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context);
+// one context per binary this way). Its memory budget is only checked by
+// set_config: the caller checked the world's config itself.
+Result<std::unique_ptr<Simulator>> create_simulator(World world, vk::Context& context,
+                                                    std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes);
 
 // sp::create_simulator's policy on an existing context (the renderer's):
 // Auto takes the CPU backend when `context` is a CPU-type device.
@@ -35,7 +37,8 @@ struct IndicatorView {
   VkDeviceSize draw_args_offset = 0;
 };
 
-// The view of `simulator` if it is this GPU backend, else nothing.
+// The view of `simulator` if it is this GPU backend, else nothing. Take it
+// again after Simulator::set_config, which may replace the ring.
 std::optional<IndicatorView> indicator_view(Simulator& simulator);
 
 // Where a GPU step's time goes (bench_step): what the step recorded, and

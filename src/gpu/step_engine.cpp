@@ -113,6 +113,15 @@ void StepEngine::record_initial_uploads(VkCommandBuffer cmd) {
   uploaded_ = true;
 }
 
+void StepEngine::record_pending_uploads(VkCommandBuffer cmd) {
+  if (uploaded_) return;
+  record_initial_uploads(cmd);
+  // WAW: the initial contents land before later transfers overwrite them.
+  vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
 void StepEngine::record_geometry_changes(VkCommandBuffer cmd, const World& world, const BvhChanges& changes) {
   const Bvh& bvh = world.geometry->bvh;
   if (bvh.nodes.size() > resources_.node_capacity)

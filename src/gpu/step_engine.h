@@ -46,6 +46,11 @@ class StepEngine {
   void record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t first_step, std::uint32_t count,
               const RecordOptions& options);
 
+  // Records the initial uploads if no step has recorded them yet, and a
+  // barrier after them: for work recorded outside a step
+  // (Simulator::set_config's) that writes the same buffers.
+  void record_pending_uploads(VkCommandBuffer cmd);
+
   GpuResources& resources() { return resources_; }
   const GpuResources& resources() const { return resources_; }
   IndicatorView view();

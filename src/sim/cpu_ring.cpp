@@ -1,6 +1,7 @@
 #include "sim/cpu_ring.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace sp {
 
@@ -54,6 +55,15 @@ void CpuRing::store(std::uint32_t slot, std::span<const shader::Indicator> run) 
   std::copy(run.begin(), run.end(), slots_.begin() + slot);
 }
 
+std::vector<shader::Indicator> CpuRing::filled() const {
+  const std::uint64_t capacity = slots_.size();
+  const std::uint64_t written = writer_.written();
+  std::vector<shader::Indicator> result;
+  result.reserve(writer_.filled());
+  for (std::uint64_t k = written - writer_.filled(); k < written; ++k) result.push_back(slots_[k % capacity]);
+  return result;
+}
+
 std::vector<shader::Indicator> CpuRing::live(std::uint64_t steps_run, const Config& config) const {
   const std::uint64_t capacity = slots_.size();
   const std::uint64_t written = writer_.written();
@@ -63,6 +73,13 @@ std::vector<shader::Indicator> CpuRing::live(std::uint64_t steps_run, const Conf
     if (is_live(indicator.step, steps_run, config)) result.push_back(indicator);
   }
   return result;
+}
+
+CpuRing CpuRing::resized(const Config& config) const {
+  CpuRing ring(config);
+  // place() lays only the newest `capacity` of them, as it does for a step.
+  ring.place(filled());
+  return ring;
 }
 
 }  // namespace sp

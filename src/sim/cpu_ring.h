@@ -103,10 +103,18 @@ class CpuRing {
   // the draw shows), oldest first.
   std::vector<shader::Indicator> live(std::uint64_t steps_run, const Config& config) const;
 
+  // A ring for `config` (Simulator::set_config) holding this one's spots
+  // in the same order, as many of the newest as its capacity takes: a
+  // player keeps seeing what was on screen, and a smaller ring drops the
+  // spots that would have faded first. The GPU backend keeps the same ones.
+  CpuRing resized(const Config& config) const;
+
   const RingWriter& writer() const { return writer_; }
 
  private:
   void store(std::uint32_t slot, std::span<const shader::Indicator> run);
+  // Every filled slot, oldest first.
+  std::vector<shader::Indicator> filled() const;
 
   RingWriter writer_;
   std::vector<shader::Indicator> slots_;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bvh/bvh.h"
+#include "sim/config_change.h"
 #include "sim/cpu_ring.h"
 #include "sim/cpu_step_runner.h"
 #include "sim/embree_traversal.h"
@@ -21,7 +22,9 @@ namespace {
 class CpuSimulator final : public Simulator {
  public:
   CpuSimulator(World world, const CpuSettings& settings)
-      : scene_(std::move(world)),
+      : memory_budget_bytes_(settings.memory_budget_bytes),
+        traversal_threads_(settings.threads),
+        scene_(std::move(world)),
         runner_(settings.threads, scene_.world().layer_names.size()),
         ring_(scene_.world().config),
         layer_table_(make_layer_table(scene_.world())),
@@ -54,6 +57,32 @@ class CpuSimulator final : public Simulator {
       return *failure_;
     }
     return done;
+  }
+
+  // Everything that can fail is made aside first (the checked config, the
+  // resized ring, the layer table, another traversal); then moves alone
+  // commit it, so that a refused config leaves the simulator as it was.
+  Result<bool> set_config(const Config& config) override {
+    if (failure_) return *failure_;
+    return capture_errors([&] {
+      ConfigChange change = prepare_config_change(scene_.world(), config, steps_run_);
+      check_memory_budget(change.config, Backend::Cpu, memory_budget_bytes_);
+      const World& world = scene_.world();
+      if (change.config.diffraction.enabled) world.geometry->ensure_exposed_edges();
+      CpuRing ring = ring_.resized(change.config);
+      std::vector<shader::LayerAcoustics> layer_table = make_layer_table(change.layer_properties);
+      const bool new_traversal = change.config.cpu_traversal != world.config.cpu_traversal;
+      std::unique_ptr<EmbreeTraversal> embree =
+          new_traversal ? make_cpu_traversal(change.config, world.geometry->bvh, traversal_threads_) : nullptr;
+
+      const std::uint32_t ray_budget = change.config.ray_budget;
+      detail::SoundSceneBackend::apply_config(scene_, std::move(change.config), std::move(change.layer_properties));
+      last_.release_beyond(ray_budget);
+      ring_ = std::move(ring);
+      layer_table_ = std::move(layer_table);
+      if (new_traversal) embree_ = std::move(embree);
+      return true;
+    });
   }
 
   Result<std::vector<Indicator>> last_step_indicators() override {
@@ -92,6 +121,8 @@ class CpuSimulator final : public Simulator {
     });
   }
 
+  std::uint64_t memory_budget_bytes_;  // CpuSettings', checked again by set_config
+  unsigned traversal_threads_;         // CpuSettings::threads, for an Embree scene set_config asks for
   SoundScene scene_;
   CpuStepRunner runner_;
   CpuRing ring_;

@@ -104,6 +104,12 @@ void CpuStepRunner::fold_guides(const StepPlan& plan) {
     shader::sp_guide_fold(guides_.data(), shader::sp_guide_base(source.source_id));
 }
 
+void CpuStepOutput::release_beyond(std::uint32_t rays) {
+  const std::size_t needed = std::max(chunk_count_, (std::size_t{rays} + kChunkRays - 1) / kChunkRays);
+  // Shrinking destroys the spare chunks' lists and frees their indicators.
+  if (chunks_.size() > needed) chunks_.resize(needed);
+}
+
 std::size_t CpuStepOutput::indicator_count() const {
   std::size_t count = 0;
   for (std::size_t c = 0; c < chunk_count_; ++c) count += chunks_[c].list.size();

@@ -46,6 +46,10 @@ class CpuStepOutput {
   // `inverse_indicator_size` is the one the step ran with.
   std::vector<shader::Indicator> admitted(std::uint32_t quota, float inverse_indicator_size) const;
 
+  // Frees the chunks that steps of at most `rays` rays never fill, once
+  // set_config lowered the ray budget; the last step's are kept.
+  void release_beyond(std::uint32_t rays);
+
  private:
   friend class CpuStepRunner;
   struct alignas(kCacheLine) Chunk {

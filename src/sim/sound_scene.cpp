@@ -176,6 +176,15 @@ Result<bool> SoundScene::set_display(const DisplaySettings& settings) {
   return true;
 }
 
+void SoundScene::apply_config(Config config, std::vector<LayerProperties> layer_properties) {
+  detail::expect_stepping_thread(*inbox_, "set_config()");
+  std::lock_guard lock(inbox_->mutex);
+  take_changes();
+  world_.config = std::move(config);
+  world_.layer_properties = std::move(layer_properties);
+  for (std::uint32_t id = 0; id < world_.sources.size(); ++id) resolve_source_display(world_, id);
+}
+
 Result<bool> SoundScene::set_instance_transform(std::uint32_t instance, const Mat4& transform) {
   const char* what = "set_instance_transform";
   if (instance >= instance_triangles_.size())

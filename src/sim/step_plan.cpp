@@ -123,8 +123,12 @@ float diffraction_edge_cos_max(const DiffractionSettings& diffraction) {
 }
 
 std::vector<shader::LayerAcoustics> make_layer_table(const World& world) {
+  return make_layer_table(world.layer_properties);
+}
+
+std::vector<shader::LayerAcoustics> make_layer_table(const std::vector<LayerProperties>& layer_properties) {
   std::vector<shader::LayerAcoustics> table;
-  for (const LayerProperties& props : world.layer_properties)
+  for (const LayerProperties& props : layer_properties)
     table.push_back({props.reflect_probability, props.attenuation, props.sheet_thickness, 0u});
   return table;
 }

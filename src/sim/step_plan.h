@@ -41,5 +41,7 @@ float diffraction_edge_cos_max(const DiffractionSettings& diffraction);
 
 // Per layer id, the acoustics table the ray model reads.
 std::vector<shader::LayerAcoustics> make_layer_table(const World& world);
+// The same from the layers' properties (a config not yet applied).
+std::vector<shader::LayerAcoustics> make_layer_table(const std::vector<LayerProperties>& layer_properties);
 
 }  // namespace sp

@@ -66,7 +66,7 @@ void check_source(const SourceDesc& s, std::size_t id) {
   if (!(s.phase >= 0.0) || !std::isfinite(s.phase)) fail("phase must be finite and >= 0");
 }
 
-namespace {
+namespace detail {
 
 // Guards API users who fill Config by hand with the JSON reader's own
 // table of ranges (config_rules.h): one rule per key, whichever way a
@@ -87,7 +87,14 @@ void check_config(const Config& c) {
     fail("signal.floor must be finite and below signal.reference");
 }
 
-}  // namespace
+std::vector<LayerProperties> resolve_layers(const Config& config, const std::vector<std::string>& layer_names) {
+  std::vector<LayerProperties> properties;
+  properties.reserve(layer_names.size());
+  for (const std::string& name : layer_names) properties.push_back(resolve_layer(config, name));
+  return properties;
+}
+
+}  // namespace detail
 
 WorldGeometryHandle::WorldGeometryHandle() : geometry_(std::make_shared<detail::WorldGeometry>()) {}
 WorldGeometryHandle::~WorldGeometryHandle() = default;
@@ -185,7 +192,7 @@ World make_world_around(const Scene& scene, const Config& config, WorldGeometryH
   world.layer_names = scene.layer_names;
   world.layer_triangle_counts.assign(scene.layer_names.size(), 0);
   for (std::uint32_t layer : scene.triangle_layers) world.layer_triangle_counts[layer] += 1;
-  for (const std::string& name : scene.layer_names) world.layer_properties.push_back(resolve_layer(config, name));
+  world.layer_properties = resolve_layers(config, scene.layer_names);
   if (check_geometry && geometry->bvh.triangle_count() != scene.triangle_count())
     throw Exception(ErrorCode::InvalidArgument, "make_world: the geometry has " +
                                                     std::to_string(geometry->bvh.triangle_count()) +
@@ -208,7 +215,7 @@ Result<World> make_world(const Scene& scene, const Config& config, const BvhBuil
     // The cheap checks first: a bad source or a missing listener is
     // refused before the level's geometry is built.
     check_scene(scene);
-    check_config(config);
+    detail::check_config(config);
     (void)detail::make_world_around(scene, config, WorldGeometryHandle{}, /*check_geometry=*/false);
     return detail::make_world_around(scene, config, detail::build_world_geometry(scene, bvh_settings, nullptr));
   });
