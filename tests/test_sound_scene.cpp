@@ -283,3 +283,30 @@ TEST(SoundScene, SceneInstanceTablesAreChecked) {
 
 }  // namespace
 }  // namespace sp
+
+namespace sp {
+namespace {
+
+// A World edited by hand so that its tables disagree is refused, naming
+// them, where it used to be repaired behind the host's back.
+TEST(SoundScene, AWorldWhoseTablesDisagreeIsRefusedNotRepaired) {
+  World extra_source = room_world(1, false);
+  extra_source.sources.push_back(extra_source.sources[0]);  // no source_active, no colour for it
+  auto refused = create_cpu_simulator(std::move(extra_source));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::InvalidArgument);
+  EXPECT_NE(refused.error().message.find("2 sources but 1 source_active and 1 source_colors"), std::string::npos)
+      << refused.error().message;
+
+  World lost_transforms = room_world(1, true);
+  lost_transforms.instance_transforms.clear();
+  auto also_refused = create_cpu_simulator(std::move(lost_transforms));
+  ASSERT_FALSE(also_refused.ok());
+  EXPECT_NE(also_refused.error().message.find("1 instances but 0 instance_transforms"), std::string::npos)
+      << also_refused.error().message;
+
+  EXPECT_TRUE(create_cpu_simulator(room_world(1, true)).ok()) << "make_world's World is refused";
+}
+
+}  // namespace
+}  // namespace sp

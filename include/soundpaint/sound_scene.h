@@ -95,6 +95,10 @@ struct SceneCommand;  // src/sim/scene_inbox.h
 // inside one of these calls is undefined behaviour.
 class SoundScene {
  public:
+  // `world` as make_world made it (a simulator makes its scene from it):
+  // one whose per-source or per-instance tables disagree, made or edited by
+  // hand, is refused with sp::Exception (InvalidArgument, naming the
+  // tables), which the simulators' create functions return as their error.
   explicit SoundScene(World world);
   ~SoundScene();
   // Shared with other threads by address: it stays where it was made.

@@ -113,6 +113,9 @@ class WorldGeometryHandle {
 // Everything a backend needs, resolved once: geometry, per-layer acoustics,
 // sources (scene's then config's) and the listener. A running simulation
 // keeps its World in a SoundScene, which changes sources and moving parts.
+// Make it with make_world: the simulators refuse a World whose tables
+// disagree (sources, source_active, source_colors; instance_names,
+// instance_transforms) rather than repair it.
 struct World {
   Config config;
   std::vector<std::string> layer_names;

@@ -37,18 +37,32 @@ Result<bool> check_source_for(const char* what, const SourceDesc& source, std::u
   return true;
 }
 
+// A World is make_world's: an entry a source in each per-source table, the
+// categories resolved, a transform an instance. One made or edited by hand
+// that breaks this is refused, naming what disagrees, rather than repaired.
+void require_consistent(const World& world) {
+  const std::size_t sources = world.sources.size();
+  std::string problem;
+  if (world.source_active.size() != sources || world.source_colors.size() != sources)
+    problem = std::to_string(sources) + " sources but " + std::to_string(world.source_active.size()) +
+              " source_active and " + std::to_string(world.source_colors.size()) + " source_colors entries";
+  else if (world.category_names.empty()) problem = "no category_names";
+  else if (world.instance_transforms.size() != world.instance_names.size())
+    problem = std::to_string(world.instance_names.size()) + " instances but " +
+              std::to_string(world.instance_transforms.size()) + " instance_transforms";
+  if (!problem.empty())
+    throw Exception(ErrorCode::InvalidArgument,
+                    "the World's tables disagree (" + problem + "): make Worlds with make_world");
+}
+
 }  // namespace
 
 SoundScene::SoundScene(World world) : world_(std::move(world)), inbox_(std::make_unique<detail::SceneInbox>()) {
-  if (world_.source_active.size() != world_.sources.size()) world_.source_active.assign(world_.sources.size(), true);
-  // A World made by hand rather than by make_world.
-  if (world_.source_colors.size() != world_.sources.size() || world_.category_names.empty())
-    resolve_all_source_display(world_);
+  require_consistent(world_);
   capacity_ = std::max<std::uint32_t>(kDefaultSourceCapacity, static_cast<std::uint32_t>(world_.sources.size()));
   play_windows_.resize(world_.sources.size());
   one_shot_.resize(world_.sources.size(), false);
   instance_triangles_ = triangles_by_instance(*world_.geometry, world_.instance_names.size());
-  world_.instance_transforms.resize(world_.instance_names.size());  // a World made by hand may lack them
   inbox_->slot_taken = world_.source_active;
   inbox_->taken =
       static_cast<std::uint32_t>(std::count(world_.source_active.begin(), world_.source_active.end(), true));
