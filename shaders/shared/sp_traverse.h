@@ -132,6 +132,15 @@ SP_INLINE float sp_intersect_box(RayQuery q, vec3 bmin, vec3 bmax, float tmax) {
   return tnear <= tfar ? tnear : SP_FAR;
 }
 
+// sp_intersect_box's answer for a box it reached at entry distance `entry`
+// under a far limit, now that the limit has shrunk to `tmax`: the walks'
+// limits only shrink, and sp_box_far_margin is monotonic, so the earlier
+// test's margin(min(exit, limit)) >= entry leaves only the new limit to
+// check. The same answer without reading the box again: a waiting node
+// costs no memory traffic when it is popped (on lavapipe each buffer read
+// of a divergent address is a loop over the lanes).
+SP_INLINE bool sp_box_still_reached(float entry, float tmax) { return entry <= sp_box_far_margin(tmax); }
+
 // Is (t, scene_index) a better hit than (best_t, best_scene)? Closest wins;
 // equal distances go to the triangle first in scene order
 // (docs/model.md#closest-hit).
@@ -151,6 +160,7 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   uint best_scene = SP_INVALID;  // lets a hit at exactly tmax through
 
   uint stack[SP_BVH_MAX_DEPTH];
+  float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
   uint node_index = 0u;
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
@@ -190,17 +200,20 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
           bool left_first = t_left <= t_right;
           node_index = left_first ? left : left + 1u;
           stack[stack_size] = left_first ? left + 1u : left;
+          stack_entry[stack_size] = left_first ? t_right : t_left;
           stack_size += 1u;
         }
         continue;
       }
     }
-    // Pop, skipping nodes that a closer hit has since ruled out.
+    // Pop, skipping nodes that a closer hit has since ruled out: the box
+    // test again with the smaller far limit, without reading the box
+    // (sp_box_still_reached).
     bool found = false;
     while (stack_size > 0u && !found) {
       stack_size -= 1u;
       node_index = stack[stack_size];
-      found = sp_intersect_box(q, bvh_nodes[node_index].bmin, bvh_nodes[node_index].bmax, best.t) != SP_FAR;
+      found = sp_box_still_reached(stack_entry[stack_size], best.t);
     }
     if (!found) break;
   }
@@ -319,6 +332,7 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
   list.cut_short = 0u;
   list.t[SP_MATTER_MAX_HITS - 1u] = tmax;  // read by the limit before the list is full
   uint stack[SP_BVH_MAX_DEPTH];
+  float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
   uint node_index = 0u;
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
@@ -352,6 +366,7 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
           bool left_first = t_left <= t_right;
           node_index = left_first ? left : left + 1u;
           stack[stack_size] = left_first ? left + 1u : left;
+          stack_entry[stack_size] = left_first ? t_right : t_left;
           stack_size += 1u;
         }
         continue;
@@ -361,8 +376,8 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
     while (stack_size > 0u && !found) {
       stack_size -= 1u;
       node_index = stack[stack_size];
-      found = sp_intersect_box(q, bvh_nodes[node_index].bmin, bvh_nodes[node_index].bmax,
-                               sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax)) != SP_FAR;
+      found = sp_box_still_reached(stack_entry[stack_size],
+                                   sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax));
     }
     if (!found) break;
   }
