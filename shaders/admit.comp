@@ -1,112 +1,26 @@
 #version 460
-// After the casts to the listener, whose last workgroup planned the step's
+// After the casts to the listener, whose last subgroup planned the step's
 // admission (sp_admission.h): the ring's share of the step's indicators
-// goes in, in two passes over the capture list (push.finish, SP_ADMIT_*):
-// - tie-break: an indicator at or above its class's threshold bin is
-//   admitted and marked in a bitmap of canonical keys; one in the bin just
-//   below (where the class's share runs out) counts its tie-break bin and is
-//   listed. The last subgroup then plans the tie-breaks, marks the listed
-//   ones they admit, and writes the running counts of the bitmap's words:
-//   each admitted indicator's place, so that the ring holds a step's spots
-//   in canonical order, as the CPU's does;
-// - copy: the admitted indicators into the ring at their places, and what
-//   the histograms counted cleared for the next step; the last subgroup
-//   moves the ring's head.
+// goes in, in two passes over the capture list (push.finish, SP_ADMIT_*;
+// admission_passes.glsl says what each does). Each pass's last subgroup
+// does what follows it: the tie-break's plans the tie-breaks and the
+// places, the copy's moves the ring's head. A step whose list fits one
+// workgroup dispatches no group here: connect.comp's last subgroup ran
+// both passes.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
-#include "sp_admission.h"
+#include "admission_passes.glsl"
 
 layout(local_size_x = SP_WORKGROUP_SIZE) in;
-
-// The canonical key of an indicator of this step: (iteration, ray, kind).
-uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }
-
-void mark(Indicator ind) {
-  uint key = order_key(ind);
-  atomicOr(admission_histogram[SP_ORDER_BITMAP + key / 32u], 1u << (key % 32u));
-}
-
-// The tie-break pass's last subgroup: the tie-break thresholds, the listed
-// indicators they admit, then the running count of admitted keys before
-// each bitmap word (stored after the bitmap), a subgroup's width of words
-// at a time.
-void decide_tiebreaks() {
-  if (subgroupElect()) sp_plan_tiebreak(SP_ADMISSION_CLASSES);
-  subgroupMemoryBarrierBuffer();
-  subgroupBarrier();
-  uint lane = gl_SubgroupInvocationID;
-  uint listed = control.tiebreak_count;
-  uint list = SP_TIEBREAK_LIST(push.max_rays, push.iterations);
-  for (uint k = lane; k < listed; k += gl_SubgroupSize) {
-    Indicator ind = capture[admission_histogram[list + k]];
-    uint c = sp_bin_class(sp_admission_bin(ind, step_input.inv_indicator_size));
-    if (sp_admission_tiebreak(ind) >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]) mark(ind);
-  }
-  subgroupMemoryBarrierBuffer();
-  subgroupBarrier();
-  uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
-  uint before = 0u;
-  for (uint first = 0u; first < words; first += gl_SubgroupSize) {
-    uint w = first + lane;
-    uint here = w < words ? bitCount(admission_histogram[SP_ORDER_BITMAP + w]) : 0u;
-    if (w < words) admission_histogram[SP_ORDER_BITMAP + words + w] = before + subgroupExclusiveAdd(here);
-    before += subgroupAdd(here);
-  }
-}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   bool valid = i < control.step_indicators;
-  Indicator ind;
-  uint bin = 0u;
-  if (valid) {
-    ind = capture[i];
-    bin = sp_admission_bin(ind, step_input.inv_indicator_size);
-  }
-  uint c = sp_bin_class(bin);
-  uint threshold = admission_histogram[SP_ADMISSION_PLAN_THRESHOLD + c];
-
   if (push.finish == SP_ADMIT_TIEBREAK) {
-    if (valid && bin >= threshold) mark(ind);
-    bool tied = valid && bin + 1u == threshold;
-    if (tied) atomicAdd(admission_histogram[SP_ADMISSION_TIEBREAKS + sp_admission_tiebreak(ind)], 1u);
-    uvec4 ballot = subgroupBallot(tied);
-    uint total = subgroupBallotBitCount(ballot);
-    uint at = 0u;
-    if (subgroupElect() && total > 0u) at = atomicAdd(control.tiebreak_count, total);
-    at = subgroupBroadcastFirst(at) + subgroupBallotExclusiveBitCount(ballot);
-    if (tied) admission_histogram[SP_TIEBREAK_LIST(push.max_rays, push.iterations) + at] = i;
-    if (last_subgroup(SP_TICKET_TIEBREAK)) decide_tiebreaks();
+    admission_tiebreak_entry(i, valid);
+    if (last_subgroup(SP_TICKET_TIEBREAK)) admission_decide_tiebreaks();
     return;
   }
-
-  // The copy.
-  uint tiebreak = valid ? sp_admission_tiebreak(ind) : 0u;
-  bool admit = valid && sp_admitted(bin, tiebreak);
-  // Only the bins and classes of this step's indicators can be non-zero;
-  // the plan and the order, read below, are not cleared.
-  if (valid) {
-    admission_histogram[bin] = 0u;
-    admission_histogram[SP_ADMISSION_TIEBREAKS + tiebreak] = 0u;
-    admission_histogram[SP_ADMISSION_CLASS_COUNTS + c] = 0u;
-  }
-  uint total = subgroupAdd(admit ? 1u : 0u);
-  if (subgroupElect() && total > 0u) atomicAdd(control.admit_count, total);
-  if (admit) {
-    // Its place: how many admitted keys come before it. At most the
-    // budget <= capacity are admitted, so no two share a slot.
-    uint key = order_key(ind);
-    uint word = key / 32u;
-    uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
-    uint rank = admission_histogram[SP_ORDER_BITMAP + words + word] +
-                bitCount(admission_histogram[SP_ORDER_BITMAP + word] & ((1u << (key % 32u)) - 1u));
-    ring[(control.ring_head + rank) % step_input.ring_capacity] = ind;
-  }
-  if (last_subgroup(SP_TICKET_COPY) && subgroupElect()) {
-    uint capacity = step_input.ring_capacity;
-    uint admitted = atomicAdd(control.admit_count, 0u);
-    control.ring_head = (control.ring_head + admitted) % capacity;
-    control.ring_filled = min(capacity, control.ring_filled + admitted);
-    control.draw_instance_count = control.ring_filled;
-  }
+  admission_copy_entry(i, valid);
+  if (last_subgroup(SP_TICKET_COPY) && subgroupElect()) admission_finish_copy();
 }

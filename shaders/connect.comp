@@ -3,12 +3,19 @@
 // the listener and completes what it hears (sp_connect.h), adds what a
 // heard spot is worth to its source's guide (sp_guide.h), and counts its
 // admission bin (resolve queued only the spots worth a cast and binned the
-// others). Its last workgroup (there is always one) then does what follows
+// others). Its last subgroup (there is always one) then does what follows
 // the wavefront once a step: the running totals, each step source's guide
-// folded, and the plan of the ring's admission (sp_admission.h).
+// folded, and the plan of the ring's admission (sp_admission.h); for a step
+// whose capture list fits one workgroup, the admission itself
+// (admission_passes.glsl), so that admit.comp's two dispatches run no
+// group.
 #extension GL_GOOGLE_include_directive : require
+// The admission run here reads what the other workgroups' connections
+// wrote into the capture list (the heard energy): coherent, as the other
+// buffers a last subgroup reads are.
+#define SP_CAPTURE_COHERENCE coherent
 #include "gpu_bindings.glsl"
-#include "sp_admission.h"
+#include "admission_passes.glsl"
 #include "sp_connect.h"
 #include "sp_guide.h"
 #include "sp_traverse.h"
@@ -85,8 +92,16 @@ void main() {
   // Each step source's guide takes in what its heard spots added.
   for (uint s = gl_SubgroupInvocationID; s < step_input.source_count; s += gl_SubgroupSize)
     sp_guide_fold(sp_guide_base(step_sources[s].source_id));
-  if (!subgroupElect()) return;
-  add_totals();
-  uint live = live_slots(step_input.params.step);
-  sp_plan_admission(sp_admission_budget(step_input.ring_quota, step_input.ring_capacity, live));
+  uint listed = control.step_indicators;
+  bool admit_here = listed > 0u && listed <= SP_ADMIT_INLINE_MAX;
+  if (subgroupElect()) {
+    add_totals();
+    uint live = live_slots(step_input.params.step);
+    sp_plan_admission(sp_admission_budget(step_input.ring_quota, step_input.ring_capacity, live));
+    if (admit_here) control.admit_group_count_x = 0u;
+  }
+  if (!admit_here) return;
+  subgroupMemoryBarrierBuffer();
+  subgroupBarrier();
+  admission_inline(listed);
 }

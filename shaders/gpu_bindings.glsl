@@ -19,7 +19,12 @@ layout(std430, binding = SP_BINDING_QUEUES) buffer QueuesBuffer { uint queue_ent
 // (last_subgroup below); so do the admission's and the guides'.
 layout(std430, binding = SP_BINDING_CONTROL) coherent buffer ControlBuffer { Control control; };
 layout(std430, binding = SP_BINDING_RING) buffer RingBuffer { Indicator ring[]; };
-layout(std430, binding = SP_BINDING_CAPTURE) buffer CaptureBuffer { Indicator capture[]; };
+// A kernel that reads the capture list in the same dispatch that wrote it
+// defines SP_CAPTURE_COHERENCE as coherent before including this file.
+#ifndef SP_CAPTURE_COHERENCE
+#define SP_CAPTURE_COHERENCE
+#endif
+layout(std430, binding = SP_BINDING_CAPTURE) SP_CAPTURE_COHERENCE buffer CaptureBuffer { Indicator capture[]; };
 layout(std430, binding = SP_BINDING_COUNTERS) buffer CountersBuffer { uint counters[]; };
 layout(std430, binding = SP_BINDING_ADMISSION) coherent buffer AdmissionBuffer { uint admission_histogram[]; };
 layout(std430, binding = SP_BINDING_EDGES) readonly buffer EdgesBuffer { TriangleEdges triangle_edges[]; };
