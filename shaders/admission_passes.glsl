@@ -19,9 +19,10 @@
 #include "sp_admission.h"
 
 // A step with at most this many indicators is admitted by connect.comp's
-// last subgroup, the admit dispatches then dispatching no group: one
-// workgroup's worth, as many as one admit workgroup would have taken.
-#define SP_ADMIT_INLINE_MAX SP_WORKGROUP_SIZE
+// last subgroup, the admit dispatches then dispatching no group: one GPU
+// workgroup's worth (a few loops of one subgroup), as many as one admit
+// workgroup takes on a GPU.
+#define SP_ADMIT_INLINE_MAX 64u
 
 // The canonical key of an indicator of this step: (iteration, ray, kind).
 uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }

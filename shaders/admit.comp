@@ -11,7 +11,7 @@
 #include "gpu_bindings.glsl"
 #include "admission_passes.glsl"
 
-layout(local_size_x = SP_WORKGROUP_SIZE) in;
+layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

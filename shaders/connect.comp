@@ -20,7 +20,7 @@
 #include "sp_guide.h"
 #include "sp_traverse.h"
 
-layout(local_size_x = SP_WORKGROUP_SIZE) in;
+layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
 void add64(inout uint lo, inout uint hi, uint value) {
   uint sum = lo + value;

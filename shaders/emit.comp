@@ -8,7 +8,7 @@
 #include "sp_ray_model.h"
 #include "sp_ring.h"
 
-layout(local_size_x = SP_WORKGROUP_SIZE) in;
+layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -44,7 +44,7 @@ void main() {
   if (i < step_input.layer_count * SP_COUNTERS_PER_LAYER) counters[i] = 0u;
   // The admission's order bitmap, which the last step's copy read.
   uint order_words = SP_ORDER_WORDS(push.max_rays, push.iterations);
-  for (uint w = i; w < order_words; w += gl_NumWorkGroups.x * SP_WORKGROUP_SIZE)
+  for (uint w = i; w < order_words; w += gl_NumWorkGroups.x * kGroupWidth)
     admission_histogram[SP_ORDER_BITMAP + w] = 0u;
   if (i >= total) return;
 

@@ -42,7 +42,11 @@ uint queue_entry(uint queue, uint i) {
 }
 
 // Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
-uint group_count(uint invocations) { return (invocations + SP_WORKGROUP_SIZE - 1u) / SP_WORKGROUP_SIZE; }
+// The kernels' width (local_size_x_id = SP_SPEC_WORKGROUP_SIZE), as the
+// code reads it: a scalar constant the host specializes to the same value
+// (lavapipe, Mesa 22.3, does not specialize gl_WorkGroupSize in the code).
+layout(constant_id = SP_SPEC_GROUP_WIDTH) const uint kGroupWidth = SP_WORKGROUP_SIZE;
+uint group_count(uint invocations) { return (invocations + kGroupWidth - 1u) / kGroupWidth; }
 void set_queue_groups_for(uint queue, uint active_rays, uint resolving) {
   control.queues[queue].group_count_x = group_count(active_rays + resolving);
   control.queues[queue].group_count_y = 1u;
@@ -83,7 +87,7 @@ bool last_subgroup(uint ticket) {
   }
   taken = subgroupBroadcastFirst(taken);
   memoryBarrierBuffer();
-  return taken + mine == gl_NumWorkGroups.x * SP_WORKGROUP_SIZE;  // every kernel's local_size_x
+  return taken + mine == gl_NumWorkGroups.x * kGroupWidth;
 }
 
 // Appends `value` to queue `queue` when `append`: at its front when

@@ -10,7 +10,7 @@
 #include "sp_ray_model.h"
 #include "sp_ring.h"
 
-layout(local_size_x = SP_WORKGROUP_SIZE) in;
+layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
 void count_event(uint layer, uint slot) { atomicAdd(counters[layer * SP_COUNTERS_PER_LAYER + slot], 1u); }
 

@@ -8,7 +8,7 @@
 #include "sp_traverse.h"
 #include "sp_ray_model.h"
 
-layout(local_size_x = SP_WORKGROUP_SIZE) in;
+layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

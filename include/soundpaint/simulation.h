@@ -70,6 +70,14 @@ struct GpuSettings {
   // Creation fails (LimitExceeded) when the config's rays and indicators
   // could need more than this many bytes (host and device together).
   std::uint64_t memory_budget_bytes = kDefaultMemoryBudgetBytes;
+  // Threads per workgroup of the simulation's kernels; 0 (the default): the
+  // device's choice, 64 on a GPU and the subgroup width on a CPU device
+  // (lavapipe), which runs a workgroup's invocations in turn, every branch
+  // of them, so a partly empty one costs in full (wider only if the ray
+  // budget needs it). Otherwise a multiple of the device's subgroup width
+  // within its limits, else creation fails (InvalidArgument). The results
+  // do not depend on it.
+  std::uint32_t workgroup_size = 0;
 };
 
 struct CpuSettings {

@@ -9,8 +9,14 @@
 // Deepest BVH the builder produces. Traversal keeps one stack entry per level,
 // so a fixed stack of this size can never overflow.
 #define SP_BVH_MAX_DEPTH 32
-// Compute workgroup width: a multiple of every common subgroup size (32/64).
+// Compute workgroup width on a GPU: a multiple of every common subgroup
+// size (32/64). The simulation's kernels take their width as the
+// specialization constant SP_SPEC_WORKGROUP_SIZE, and read it as
+// SP_SPEC_GROUP_WIDTH (gpu::kernel_workgroup_size: a CPU device gets its
+// subgroup width instead).
 #define SP_WORKGROUP_SIZE 64
+#define SP_SPEC_WORKGROUP_SIZE 0
+#define SP_SPEC_GROUP_WIDTH 1  // the same width, as the kernels' code reads it
 // Surface offset (metres) applied after reflections and exits, so a ray
 // never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

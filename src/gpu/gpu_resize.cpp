@@ -27,7 +27,7 @@ std::size_t GpuResize::capture_index() { return index_of(SP_BINDING_CAPTURE); }
 std::size_t GpuResize::ring_index() { return index_of(SP_BINDING_RING); }
 
 GpuResize::GpuResize(vk::Context& context, const GpuResources& resources, const Config& config, const Bvh& bvh)
-    : sizes_(config_sizes(context, config)) {
+    : sizes_(config_sizes(context, config, resources.workgroup_size)) {
   const ConfigSizes now = resources.sizes();
   for (std::size_t i = 0; i < kSizedBufferCount; ++i) {
     const SizedBuffer& buffer = kSizedBuffers[i];

@@ -109,7 +109,31 @@ const SizedBuffer kSizedBuffers[kSizedBufferCount] = {
     {&GpuResources::connect_queue, SP_BINDING_CONNECT},
 };
 
-ConfigSizes config_sizes(const vk::Context& context, const Config& config) {
+std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t max_rays) {
+  const std::uint32_t subgroup = std::max<std::uint32_t>(1, context.subgroup_size());
+  const std::uint32_t requested = context.requested_kernel_workgroup_size();
+  const VkPhysicalDeviceLimits& limits = context.properties().limits;
+  if (requested != 0) {
+    const std::uint32_t most = std::min(limits.maxComputeWorkGroupSize[0], limits.maxComputeWorkGroupInvocations);
+    if (requested % subgroup != 0 || requested > most)
+      throw Exception(ErrorCode::InvalidArgument, "workgroup_size " + std::to_string(requested) +
+                                                      " must be a multiple of the device's subgroup width " +
+                                                      std::to_string(subgroup) + " and at most " +
+                                                      std::to_string(most));
+    return requested;
+  }
+  if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU || subgroup >= SP_WORKGROUP_SIZE)
+    return SP_WORKGROUP_SIZE;
+  // Wider only when the budget's rays would need more workgroups than the
+  // device dispatches.
+  std::uint32_t width = subgroup;
+  while (width < SP_WORKGROUP_SIZE &&
+         (std::uint64_t{max_rays} + width - 1) / width > limits.maxComputeWorkGroupCount[0])
+    width *= 2;
+  return width;
+}
+
+ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size) {
   ConfigSizes sizes;
   sizes.max_rays = std::max<std::uint32_t>(1, config.ray_budget);
   // A ray casts at most twice per interaction (a closest-hit cast and, when
@@ -118,10 +142,10 @@ ConfigSizes config_sizes(const vk::Context& context, const Config& config) {
   sizes.capture_capacity = sizes.max_rays * sizes.iterations;
   sizes.ring_capacity = config.max_indicators;
   const std::uint32_t max_groups = context.properties().limits.maxComputeWorkGroupCount[0];
-  if ((std::uint64_t{sizes.max_rays} + SP_WORKGROUP_SIZE - 1) / SP_WORKGROUP_SIZE > max_groups)
+  if ((std::uint64_t{sizes.max_rays} + workgroup_size - 1) / workgroup_size > max_groups)
     throw Exception(ErrorCode::LimitExceeded, "ray_budget " + std::to_string(config.ray_budget) +
-                                                  " needs more workgroups than the device's limit of " +
-                                                  std::to_string(max_groups));
+                                                  " needs more workgroups of " + std::to_string(workgroup_size) +
+                                                  " threads than the device's limit of " + std::to_string(max_groups));
   return sizes;
 }
 
@@ -134,8 +158,9 @@ vk::Buffer create_sized_buffer(const vk::Context& context, const SizedBuffer& bu
   return vk::Buffer(context, spec.bytes, spec.usage, vk::MemoryUsage::DeviceLocal, spec.name);
 }
 
-GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources) {
-  const ConfigSizes sized = config_sizes(context, world.config);
+GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32_t sources)
+    : workgroup_size(kernel_workgroup_size(context, std::max<std::uint32_t>(1, world.config.ray_budget))) {
+  const ConfigSizes sized = config_sizes(context, world.config, workgroup_size);
   max_rays = sized.max_rays;
   iterations = sized.iterations;
   capture_capacity = sized.capture_capacity;
@@ -199,13 +224,17 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
-  kernels.emit = vk::ComputePipeline(context, sp_spirv_emit_comp, bindings.layout(), push, "emit");
-  kernels.trace = vk::ComputePipeline(context, sp_spirv_trace_comp, bindings.layout(), push, "trace");
-  kernels.trace_matter =
-      vk::ComputePipeline(context, sp_spirv_trace_matter_comp, bindings.layout(), push, "trace_matter");
-  kernels.resolve = vk::ComputePipeline(context, sp_spirv_resolve_comp, bindings.layout(), push, "resolve");
-  kernels.connect = vk::ComputePipeline(context, sp_spirv_connect_comp, bindings.layout(), push, "connect");
-  kernels.admit = vk::ComputePipeline(context, sp_spirv_admit_comp, bindings.layout(), push, "admit");
+  static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1, "the kernels' specialization constants");
+  const std::uint32_t spec[] = {workgroup_size, workgroup_size};
+  auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
+    return vk::ComputePipeline(context, spirv, bindings.layout(), push, name, spec);
+  };
+  kernels.emit = kernel(sp_spirv_emit_comp, "emit");
+  kernels.trace = kernel(sp_spirv_trace_comp, "trace");
+  kernels.trace_matter = kernel(sp_spirv_trace_matter_comp, "trace_matter");
+  kernels.resolve = kernel(sp_spirv_resolve_comp, "resolve");
+  kernels.connect = kernel(sp_spirv_connect_comp, "connect");
+  kernels.admit = kernel(sp_spirv_admit_comp, "admit");
 }
 
 }  // namespace sp::gpu

@@ -35,9 +35,20 @@ struct ConfigSizes {
   std::uint32_t ring_capacity = 0;     // max_indicators
 };
 
+// Threads per workgroup of the simulation's kernels on `context`'s device
+// for a budget of `max_rays`: the one ContextSettings asked for; else, on a
+// CPU device, its subgroup width (lavapipe runs a workgroup's invocations a
+// subgroup at a time on one thread, every branch of them, so a partly
+// empty workgroup costs in full, and more workgroups spread over its
+// threads), doubled while the budget would need more workgroups than the
+// device dispatches, up to SP_WORKGROUP_SIZE; else SP_WORKGROUP_SIZE.
+// Throws sp::Exception(InvalidArgument) when the one asked for is not a
+// multiple of the subgroup width within the device's limits, naming them.
+std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t max_rays);
+
 // Throws sp::Exception(LimitExceeded) when ray_budget needs more
-// workgroups than the device dispatches.
-ConfigSizes config_sizes(const vk::Context& context, const Config& config);
+// workgroups of `workgroup_size` threads than the device dispatches.
+ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size);
 
 struct GpuResources;
 
@@ -62,6 +73,10 @@ struct GpuResources {
   // initial_copies points into this object.
   GpuResources(const GpuResources&) = delete;
   GpuResources& operator=(const GpuResources&) = delete;
+
+  // The kernels' width (kernel_workgroup_size for the first config): kept
+  // by set_config, whose budget must then fit the device's workgroup count.
+  std::uint32_t workgroup_size = 0;
 
   // As ConfigSizes, for the config the buffers were last sized for.
   std::uint32_t max_rays = 0;

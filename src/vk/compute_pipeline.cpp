@@ -39,8 +39,8 @@ void StorageBindings::bind(const Context& context, std::uint32_t binding, VkBuff
 }
 
 ComputePipeline::ComputePipeline(const Context& context, std::span<const std::uint32_t> spirv,
-                                 VkDescriptorSetLayout set_layout, std::uint32_t push_constant_bytes,
-                                 const char* name) {
+                                 VkDescriptorSetLayout set_layout, std::uint32_t push_constant_bytes, const char* name,
+                                 std::span<const std::uint32_t> specialization) {
   const std::string label = name != nullptr ? name : "compute pipeline";
   // Only needed until the pipeline exists.
   const UniqueShaderModule shader = create_shader_module(context, spirv, label.c_str());
@@ -53,6 +53,13 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const std::ui
   pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pipeline_info.stage.module = shader.get();
   pipeline_info.stage.pName = "main";
+  std::vector<VkSpecializationMapEntry> entries(specialization.size());
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    entries[i] = {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i * sizeof(std::uint32_t)),
+                  sizeof(std::uint32_t)};
+  const VkSpecializationInfo specialization_info{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                                                 specialization.size_bytes(), specialization.data()};
+  if (!specialization.empty()) pipeline_info.stage.pSpecializationInfo = &specialization_info;
   pipeline_info.layout = layout_.get();
   VkPipeline raw_pipeline = VK_NULL_HANDLE;
   SP_VK_CHECK(vkCreateComputePipelines(context.device(), context.pipeline_cache(), 1, &pipeline_info,

@@ -43,9 +43,11 @@ class ComputePipeline {
  public:
   ComputePipeline() = default;
   // `spirv` is the embedded SPIR-V; push constants (if any) are visible to
-  // the compute stage. Throws sp::Exception on failure.
+  // the compute stage; `specialization[i]` is the value of the shader's
+  // 32-bit specialization constant i. Throws sp::Exception on failure.
   ComputePipeline(const Context& context, std::span<const std::uint32_t> spirv, VkDescriptorSetLayout set_layout,
-                  std::uint32_t push_constant_bytes, const char* name);
+                  std::uint32_t push_constant_bytes, const char* name,
+                  std::span<const std::uint32_t> specialization = {});
 
   VkPipeline get() const { return pipeline_.get(); }
   VkPipelineLayout layout() const { return layout_.get(); }

@@ -216,6 +216,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         // Built step by step; if a step throws, the destructor releases the
         // steps already done (it skips null handles).
         std::unique_ptr<Context> context(new Context());
+        context->requested_kernel_workgroup_size_ = settings.kernel_workgroup_size;
         const bool validation = settings.validation || env_is("SOUNDPAINT_VALIDATION", "1");
         if (validation) context->messages_ = std::make_unique<Messages>();
 

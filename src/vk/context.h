@@ -32,6 +32,9 @@ struct ContextSettings {
   // missing ones are errors naming them.
   std::vector<std::string> instance_extensions;
   std::vector<std::string> device_extensions;
+  // Threads per workgroup of the simulation's kernels; 0: the device's
+  // choice (gpu::kernel_workgroup_size).
+  std::uint32_t kernel_workgroup_size = 0;
 };
 
 // What the compute kernels need of the device's subgroups
@@ -73,6 +76,8 @@ class Context {
   std::uint32_t queue_family() const { return queue_family_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::uint32_t subgroup_size() const { return subgroup_size_; }
+  // ContextSettings::kernel_workgroup_size (0 when borrowed).
+  std::uint32_t requested_kernel_workgroup_size() const { return requested_kernel_workgroup_size_; }
 
   // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
   std::string description() const;
@@ -125,6 +130,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_properties_{};
   std::string driver_info_;
   std::uint32_t subgroup_size_ = 1;
+  std::uint32_t requested_kernel_workgroup_size_ = 0;
   UniqueCommandPool one_time_pool_;  // owned contexts only
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   bool borrowed_ = false;

@@ -1,0 +1,115 @@
+// The width of the simulation's kernels (GpuSettings::workgroup_size):
+// what a device gets by default, what is refused, and results that do not
+// depend on it.
+#include <algorithm>
+#include <cstring>
+#include <tuple>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <gtest/gtest.h>
+
+#include "gpu/gpu_resources.h"
+#include "support/gpu_environment.h"
+#include "support/scene_builder.h"
+
+namespace sp {
+namespace {
+
+class KernelWidth : public test::GpuTest {};
+
+Config room_config(std::uint32_t budget) {
+  Config config;
+  config.listener_position = glm::vec3(0, 1.5f, 0);
+  config.ray_budget = budget;
+  config.min_energy = 0.001f;
+  return config;
+}
+
+struct WidthRun {
+  std::vector<Indicator> indicators;  // sorted by (step, iteration, ray, kind)
+  std::vector<std::size_t> per_step;  // indicators each step made
+  std::vector<Indicator> live;        // the ring's, in its order
+  SimulationStats stats;
+};
+
+// Four steps at 8 rays (a few dozen spots a step: the connect pass's last
+// subgroup admits them) then four at 300 (hundreds: the admit dispatches).
+WidthRun run_with_width(std::uint32_t workgroup_size) {
+  GpuSettings settings;
+  settings.workgroup_size = workgroup_size;
+  auto sim = create_gpu_simulator(make_world(test::closed_room(), room_config(8)).value(), settings).value();
+  WidthRun out;
+  for (int n = 0; n < 8; ++n) {
+    if (n == 4) {
+      EXPECT_TRUE(sim->set_config(room_config(300)).ok());
+    }
+    EXPECT_TRUE(sim->step().ok());
+    const std::vector<Indicator> step = sim->last_step_indicators().value();
+    out.per_step.push_back(step.size());
+    out.indicators.insert(out.indicators.end(), step.begin(), step.end());
+  }
+  std::sort(out.indicators.begin(), out.indicators.end(), [](const Indicator& a, const Indicator& b) {
+    return std::tie(a.step, a.iteration, a.ray_index, a.kind) < std::tie(b.step, b.iteration, b.ray_index, b.kind);
+  });
+  out.live = sim->live_indicators().value();
+  out.stats = sim->stats().value();
+  return out;
+}
+
+void expect_same_bytes(const std::vector<Indicator>& got, const std::vector<Indicator>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i)
+    ASSERT_EQ(std::memcmp(&got[i], &want[i], sizeof(Indicator)), 0) << "indicator " << i;
+}
+
+TEST_F(KernelWidth, ACpuDeviceGetsItsSubgroupWidthWiderOnlyForABudgetThatNeedsIt) {
+  const vk::Context& context = *test::GpuEnvironment::context();
+  const std::uint32_t subgroup = context.subgroup_size();
+  if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU || subgroup >= SP_WORKGROUP_SIZE) {
+    EXPECT_EQ(gpu::kernel_workgroup_size(context, 300), std::uint32_t{SP_WORKGROUP_SIZE});
+    return;
+  }
+  EXPECT_EQ(gpu::kernel_workgroup_size(context, 300), subgroup);
+  const std::uint32_t groups = context.properties().limits.maxComputeWorkGroupCount[0];
+  EXPECT_EQ(gpu::kernel_workgroup_size(context, subgroup * groups), subgroup);
+  EXPECT_EQ(gpu::kernel_workgroup_size(context, subgroup * groups + 1), 2 * subgroup);
+}
+
+TEST_F(KernelWidth, TheSameIndicatorsAndTotalsWhateverTheWidth) {
+  const std::uint32_t subgroup = test::GpuEnvironment::context()->subgroup_size();
+  const WidthRun reference = run_with_width(0);
+  // Both ways of admitting ran: steps of at most 64 spots and steps of more.
+  EXPECT_TRUE(std::any_of(reference.per_step.begin(), reference.per_step.end(),
+                          [](std::size_t n) { return n > 0 && n <= 64; }));
+  EXPECT_TRUE(
+      std::any_of(reference.per_step.begin(), reference.per_step.end(), [](std::size_t n) { return n > 64; }));
+  for (std::uint32_t width : {2 * subgroup, std::uint32_t{SP_WORKGROUP_SIZE}}) {
+    SCOPED_TRACE(width);
+    const WidthRun other = run_with_width(width);
+    EXPECT_EQ(other.per_step, reference.per_step);
+    expect_same_bytes(other.indicators, reference.indicators);
+    expect_same_bytes(other.live, reference.live);
+    EXPECT_EQ(other.stats.casts, reference.stats.casts);
+    EXPECT_EQ(other.stats.connections, reference.stats.connections);
+    EXPECT_EQ(other.stats.indicators, reference.stats.indicators);
+  }
+}
+
+TEST_F(KernelWidth, AWidthThatIsNoMultipleOfTheSubgroupOrBeyondTheLimitIsRefusedNamingIt) {
+  const vk::Context& context = *test::GpuEnvironment::context();
+  const std::uint32_t subgroup = context.subgroup_size();
+  std::vector<std::uint32_t> bad = {context.properties().limits.maxComputeWorkGroupInvocations * 2};
+  if (subgroup > 1) bad.push_back(subgroup + 1);
+  for (std::uint32_t width : bad) {
+    GpuSettings settings;
+    settings.workgroup_size = width;
+    auto sim = create_gpu_simulator(make_world(test::closed_room(), room_config(8)).value(), settings);
+    ASSERT_FALSE(sim.ok()) << width;
+    EXPECT_EQ(sim.error().code, ErrorCode::InvalidArgument);
+    EXPECT_NE(sim.error().message.find("workgroup_size"), std::string::npos) << sim.error().message;
+  }
+}
+
+}  // namespace
+}  // namespace sp
