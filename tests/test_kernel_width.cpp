@@ -82,8 +82,7 @@ TEST_F(KernelWidth, TheSameIndicatorsAndTotalsWhateverTheWidth) {
   // Both ways of admitting ran: steps of at most 64 spots and steps of more.
   EXPECT_TRUE(std::any_of(reference.per_step.begin(), reference.per_step.end(),
                           [](std::size_t n) { return n > 0 && n <= 64; }));
-  EXPECT_TRUE(
-      std::any_of(reference.per_step.begin(), reference.per_step.end(), [](std::size_t n) { return n > 64; }));
+  EXPECT_TRUE(std::any_of(reference.per_step.begin(), reference.per_step.end(), [](std::size_t n) { return n > 64; }));
   for (std::uint32_t width : {2 * subgroup, std::uint32_t{SP_WORKGROUP_SIZE}}) {
     SCOPED_TRACE(width);
     const WidthRun other = run_with_width(width);
