@@ -11,9 +11,10 @@
 // - copy: the admitted indicators into the ring at their places, and what
 //   the histograms counted cleared for the next step; then one invocation
 //   moves the ring's head.
-// admit.comp runs them as two dispatches over the list; a step whose list
-// fits one workgroup has them run by connect.comp's last subgroup instead
-// (admission_inline), which saves two dispatches and their round trips.
+// admit.comp runs them as two dispatches over the list; a step of at most
+// SP_ADMIT_INLINE_MAX spots has them run by connect.comp's last subgroup
+// instead (admission_inline), which saves two dispatches and their round
+// trips.
 // Every function is reached by whole subgroups (uniform control flow):
 // they use subgroup operations.
 #include "sp_admission.h"

@@ -4,9 +4,9 @@
 // goes in, in two passes over the capture list (push.finish, SP_ADMIT_*;
 // admission_passes.glsl says what each does). Each pass's last subgroup
 // does what follows it: the tie-break's plans the tie-breaks and the
-// places, the copy's moves the ring's head. A step whose list fits one
-// workgroup dispatches no group here: connect.comp's last subgroup ran
-// both passes.
+// places, the copy's moves the ring's head. A step of at most
+// SP_ADMIT_INLINE_MAX spots dispatches no group here: connect.comp's last
+// subgroup ran both passes.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "admission_passes.glsl"

@@ -6,7 +6,7 @@
 // others). Its last subgroup (there is always one) then does what follows
 // the wavefront once a step: the running totals, each step source's guide
 // folded, and the plan of the ring's admission (sp_admission.h); for a step
-// whose capture list fits one workgroup, the admission itself
+// of at most SP_ADMIT_INLINE_MAX spots, the admission itself
 // (admission_passes.glsl), so that admit.comp's two dispatches run no
 // group.
 #extension GL_GOOGLE_include_directive : require

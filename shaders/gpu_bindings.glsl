@@ -41,11 +41,12 @@ uint queue_entry(uint queue, uint i) {
   return queue_entries[queue * push.max_rays + slot];
 }
 
-// Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
 // The kernels' width (local_size_x_id = SP_SPEC_WORKGROUP_SIZE), as the
 // code reads it: a scalar constant the host specializes to the same value
 // (lavapipe, Mesa 22.3, does not specialize gl_WorkGroupSize in the code).
 layout(constant_id = SP_SPEC_GROUP_WIDTH) const uint kGroupWidth = SP_WORKGROUP_SIZE;
+
+// Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
 uint group_count(uint invocations) { return (invocations + kGroupWidth - 1u) / kGroupWidth; }
 void set_queue_groups_for(uint queue, uint active_rays, uint resolving) {
   control.queues[queue].group_count_x = group_count(active_rays + resolving);
