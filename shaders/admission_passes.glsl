@@ -12,7 +12,7 @@
 //   the histograms counted cleared for the next step; then one invocation
 //   moves the ring's head.
 // admit.comp runs them as two dispatches over the list; a step of at most
-// SP_ADMIT_INLINE_MAX spots has them run by connect.comp's last subgroup
+// kAdmitInlineMax spots has them run by connect.comp's last subgroup
 // instead (admission_inline), which saves two dispatches and their round
 // trips.
 // Every function is reached by whole subgroups (uniform control flow):
@@ -20,10 +20,9 @@
 #include "sp_admission.h"
 
 // A step with at most this many indicators is admitted by connect.comp's
-// last subgroup, the admit dispatches then dispatching no group: one GPU
-// workgroup's worth (a few loops of one subgroup), as many as one admit
-// workgroup takes on a GPU.
-#define SP_ADMIT_INLINE_MAX 64u
+// last subgroup, the admit dispatches then dispatching no group
+// (gpu::inline_admission_max: 64 on a GPU, every step on a CPU device).
+layout(constant_id = SP_SPEC_ADMIT_INLINE_MAX) const uint kAdmitInlineMax = 64u;
 
 // The canonical key of an indicator of this step: (iteration, ray, kind).
 uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }
@@ -121,7 +120,7 @@ void admission_finish_copy() {
   control.draw_instance_count = control.ring_filled;
 }
 
-// Both passes by one subgroup over a list of at most SP_ADMIT_INLINE_MAX
+// Both passes by one subgroup over a list of at most kAdmitInlineMax
 // indicators, once the admission is planned.
 void admission_inline(uint listed) {
   for (uint first = 0u; first < listed; first += gl_SubgroupSize)

@@ -5,7 +5,7 @@
 // admission_passes.glsl says what each does). Each pass's last subgroup
 // does what follows it: the tie-break's plans the tie-breaks and the
 // places, the copy's moves the ring's head. A step of at most
-// SP_ADMIT_INLINE_MAX spots dispatches no group here: connect.comp's last
+// kAdmitInlineMax spots dispatches no group here: connect.comp's last
 // subgroup ran both passes.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"

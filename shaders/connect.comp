@@ -6,7 +6,7 @@
 // others). Its last subgroup (there is always one) then does what follows
 // the wavefront once a step: the running totals, each step source's guide
 // folded, and the plan of the ring's admission (sp_admission.h); for a step
-// of at most SP_ADMIT_INLINE_MAX spots, the admission itself
+// of at most kAdmitInlineMax spots, the admission itself
 // (admission_passes.glsl), so that admit.comp's two dispatches run no
 // group.
 #extension GL_GOOGLE_include_directive : require
@@ -93,7 +93,7 @@ void main() {
   for (uint s = gl_SubgroupInvocationID; s < step_input.source_count; s += gl_SubgroupSize)
     sp_guide_fold(sp_guide_base(step_sources[s].source_id));
   uint listed = control.step_indicators;
-  bool admit_here = listed > 0u && listed <= SP_ADMIT_INLINE_MAX;
+  bool admit_here = listed > 0u && listed <= kAdmitInlineMax;
   if (subgroupElect()) {
     add_totals();
     uint live = live_slots(step_input.params.step);

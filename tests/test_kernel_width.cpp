@@ -3,6 +3,8 @@
 // depend on it.
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <memory>
 #include <tuple>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "gpu/gpu_resources.h"
 #include "support/gpu_environment.h"
 #include "support/scene_builder.h"
+#include "vk/context.h"
 
 namespace sp {
 namespace {
@@ -33,27 +36,51 @@ struct WidthRun {
   SimulationStats stats;
 };
 
-// Four steps at 8 rays (a few dozen spots a step: the connect pass's last
-// subgroup admits them) then four at 300 (hundreds: the admit dispatches).
-WidthRun run_with_width(std::uint32_t workgroup_size) {
-  GpuSettings settings;
-  settings.workgroup_size = workgroup_size;
-  auto sim = create_gpu_simulator(make_world(test::closed_room(), room_config(8)).value(), settings).value();
+// Four steps at 8 rays (a few dozen spots a step) then four at 300
+// (hundreds): on a GPU the connect pass's last subgroup admits the first,
+// the admit dispatches the others; on a CPU device the connect pass admits
+// them all (gpu::inline_admission_max).
+WidthRun run_steps(Simulator& sim) {
   WidthRun out;
   for (int n = 0; n < 8; ++n) {
     if (n == 4) {
-      EXPECT_TRUE(sim->set_config(room_config(300)).ok());
+      EXPECT_TRUE(sim.set_config(room_config(300)).ok());
     }
-    EXPECT_TRUE(sim->step().ok());
-    const std::vector<Indicator> step = sim->last_step_indicators().value();
+    EXPECT_TRUE(sim.step().ok());
+    const std::vector<Indicator> step = sim.last_step_indicators().value();
     out.per_step.push_back(step.size());
     out.indicators.insert(out.indicators.end(), step.begin(), step.end());
   }
   std::sort(out.indicators.begin(), out.indicators.end(), [](const Indicator& a, const Indicator& b) {
     return std::tie(a.step, a.iteration, a.ray_index, a.kind) < std::tie(b.step, b.iteration, b.ray_index, b.kind);
   });
-  out.live = sim->live_indicators().value();
-  out.stats = sim->stats().value();
+  out.live = sim.live_indicators().value();
+  out.stats = sim.stats().value();
+  return out;
+}
+
+WidthRun run_with_width(std::uint32_t workgroup_size) {
+  GpuSettings settings;
+  settings.workgroup_size = workgroup_size;
+  auto sim = create_gpu_simulator(make_world(test::closed_room(), room_config(8)).value(), settings).value();
+  return run_steps(*sim);
+}
+
+// The same steps with the other way of admitting the steps of more than 64
+// spots: the two admit dispatches where the device's choice is the connect
+// pass (a CPU device), the connect pass where it is the dispatches.
+WidthRun run_with_the_other_admission() {
+  const vk::Context& shared = *test::GpuEnvironment::context();
+  vk::ContextSettings settings;
+  settings.validation = true;
+  settings.device_name = shared.properties().deviceName;
+  settings.kernel_workgroup_size = SP_WORKGROUP_SIZE;
+  const bool dispatches_by_default = gpu::inline_admission_max(shared) == 64u;
+  settings.inline_admission_max = dispatches_by_default ? std::numeric_limits<std::uint32_t>::max() : 64u;
+  std::unique_ptr<vk::Context> context = vk::Context::create(settings).value();
+  auto sim = gpu::create_simulator(make_world(test::closed_room(), room_config(8)).value(), *context).value();
+  WidthRun out = run_steps(*sim);
+  EXPECT_EQ(context->validation_message_count(), 0u);
   return out;
 }
 
@@ -93,6 +120,16 @@ TEST_F(KernelWidth, TheSameIndicatorsAndTotalsWhateverTheWidth) {
     EXPECT_EQ(other.stats.connections, reference.stats.connections);
     EXPECT_EQ(other.stats.indicators, reference.stats.indicators);
   }
+}
+
+TEST_F(KernelWidth, TheAdmitDispatchesAdmitWhatTheConnectPassAdmits) {
+  const WidthRun reference = run_with_width(0);
+  ASSERT_TRUE(std::any_of(reference.per_step.begin(), reference.per_step.end(), [](std::size_t n) { return n > 64; }));
+  const WidthRun other = run_with_the_other_admission();
+  EXPECT_EQ(other.per_step, reference.per_step);
+  expect_same_bytes(other.indicators, reference.indicators);
+  expect_same_bytes(other.live, reference.live);
+  EXPECT_EQ(other.stats.indicators, reference.stats.indicators);
 }
 
 TEST_F(KernelWidth, AWidthThatIsNoMultipleOfTheSubgroupOrBeyondTheLimitIsRefusedNamingIt) {

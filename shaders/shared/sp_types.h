@@ -17,6 +17,9 @@
 #define SP_WORKGROUP_SIZE 64
 #define SP_SPEC_WORKGROUP_SIZE 0
 #define SP_SPEC_GROUP_WIDTH 1  // the same width, as the kernels' code reads it
+// The most spots a step may have for the connect pass to admit them itself
+// (shaders/admission_passes.glsl; gpu::inline_admission_max).
+#define SP_SPEC_ADMIT_INLINE_MAX 2
 // Surface offset (metres) applied after reflections and exits, so a ray
 // never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

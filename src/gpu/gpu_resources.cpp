@@ -1,6 +1,7 @@
 #include "gpu/gpu_resources.h"
 
 #include <algorithm>
+#include <limits>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -133,6 +134,12 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
   return width;
 }
 
+std::uint32_t inline_admission_max(const vk::Context& context) {
+  if (context.requested_inline_admission_max() != 0) return context.requested_inline_admission_max();
+  return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? std::numeric_limits<std::uint32_t>::max()
+                                                                        : 64u;
+}
+
 ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size) {
   ConfigSizes sizes;
   sizes.max_rays = std::max<std::uint32_t>(1, config.ray_budget);
@@ -224,8 +231,9 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
-  static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1, "the kernels' specialization constants");
-  const std::uint32_t spec[] = {workgroup_size, workgroup_size};
+  static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1 && SP_SPEC_ADMIT_INLINE_MAX == 2,
+                "the kernels' specialization constants, in order");
+  const std::uint32_t spec[] = {workgroup_size, workgroup_size, inline_admission_max(context)};
   auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
     return vk::ComputePipeline(context, spirv, bindings.layout(), push, name, spec);
   };

@@ -46,6 +46,16 @@ struct ConfigSizes {
 // multiple of the subgroup width within the device's limits, naming them.
 std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t max_rays);
 
+// The most spots a step may have for the connect pass's last subgroup to
+// admit them itself (shaders/admission_passes.glsl), the two admit
+// dispatches then running no group: the one ContextSettings asked for;
+// else, on a CPU device, every step (there each dispatch is a thread-pool
+// hand-off that costs more than one subgroup's walk over even the 9,000
+// spots of a 2,500-ray step: bench/RESULTS.md section 30); else 64 (on a
+// GPU one subgroup's walk over many spots would cost more than the two
+// dispatches).
+std::uint32_t inline_admission_max(const vk::Context& context);
+
 // Throws sp::Exception(LimitExceeded) when ray_budget needs more
 // workgroups of `workgroup_size` threads than the device dispatches.
 ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size);

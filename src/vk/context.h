@@ -35,6 +35,9 @@ struct ContextSettings {
   // Threads per workgroup of the simulation's kernels; 0: the device's
   // choice (gpu::kernel_workgroup_size).
   std::uint32_t kernel_workgroup_size = 0;
+  // The most spots a step may have for the connect pass to admit them
+  // itself; 0: the device's choice (gpu::inline_admission_max).
+  std::uint32_t inline_admission_max = 0;
 };
 
 // What the compute kernels need of the device's subgroups
@@ -78,6 +81,8 @@ class Context {
   std::uint32_t subgroup_size() const { return subgroup_size_; }
   // ContextSettings::kernel_workgroup_size (0 when borrowed).
   std::uint32_t requested_kernel_workgroup_size() const { return requested_kernel_workgroup_size_; }
+  // ContextSettings::inline_admission_max (0 when borrowed).
+  std::uint32_t requested_inline_admission_max() const { return requested_inline_admission_max_; }
 
   // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
   std::string description() const;
@@ -131,6 +136,7 @@ class Context {
   std::string driver_info_;
   std::uint32_t subgroup_size_ = 1;
   std::uint32_t requested_kernel_workgroup_size_ = 0;
+  std::uint32_t requested_inline_admission_max_ = 0;
   UniqueCommandPool one_time_pool_;  // owned contexts only
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   bool borrowed_ = false;
