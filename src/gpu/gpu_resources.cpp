@@ -1,8 +1,8 @@
 #include "gpu/gpu_resources.h"
 
 #include <algorithm>
-#include <limits>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
