@@ -35,18 +35,7 @@ Config mirror_config() {
   return c;
 }
 
-// The 6 x 3 x 5 m closed room split at x in [0.9, 1.1] by a movable wall
-// spanning its whole cross-section, with a source on the -x side.
-Scene room_with_movable_wall() {
-  Scene scene = test::closed_room();
-  scene.sources = {test::source_at({-1.5f, 1.5f, 0.0f})};
-  const std::size_t static_triangles = scene.triangle_count();
-  test::add_box(scene, {0.9f, 0.0f, -2.5f}, {1.1f, 3.0f, 2.5f}, "door");
-  scene.instance_names = {"sliding wall"};
-  scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
-  for (std::size_t t = static_triangles; t < scene.triangle_count(); ++t) scene.triangle_instances[t] = 0;
-  return scene;
-}
+using test::room_with_movable_wall;
 
 std::size_t count_beyond(const std::vector<Indicator>& indicators, float x) {
   std::size_t n = 0;

@@ -145,19 +145,7 @@ TEST_P(SetConfig, SourcesTheHostAddedAndMovedKeepEmittingAndConfigSourcesAreNotR
   EXPECT_EQ(world.config.ray_budget, 300u);
 }
 
-// The 6 x 3 x 5 m closed mirror room split at x in [0.9, 1.1] by a movable
-// wall (moving part 0) spanning its whole cross-section, the scene's source
-// on the -x side (as test_live_scene.cpp's).
-Scene room_with_movable_wall() {
-  Scene scene = test::closed_room();
-  scene.sources = {test::source_at({-1.5f, 1.5f, 0.0f})};
-  const std::size_t static_triangles = scene.triangle_count();
-  test::add_box(scene, {0.9f, 0.0f, -2.5f}, {1.1f, 3.0f, 2.5f}, "door");
-  scene.instance_names = {"sliding wall"};
-  scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
-  for (std::size_t t = static_triangles; t < scene.triangle_count(); ++t) scene.triangle_instances[t] = 0;
-  return scene;
-}
+using test::room_with_movable_wall;
 
 TEST_P(SetConfig, VoicesPlayWindowsTheListenerAndAMovedWallStay) {
   Config config = base_config();

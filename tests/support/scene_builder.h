@@ -2,6 +2,7 @@
 // hand: axis-aligned solid boxes (closed, outward-facing) with named layers.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -95,6 +96,20 @@ inline Scene closed_room() {
   Scene scene;
   add_closed_room(scene, {-3, 0, -2.5f}, {3, 3, 2.5f}, 0.3f, "concrete");
   scene.sources.push_back(source_at({0.5f, 1.5f, 0.2f}));
+  return scene;
+}
+
+// closed_room() split at x in [0.9, 1.1] by a movable wall (moving part 0,
+// "sliding wall", layer "door") spanning its whole cross-section, with the
+// only source on the -x side.
+inline Scene room_with_movable_wall() {
+  Scene scene = closed_room();
+  scene.sources = {source_at({-1.5f, 1.5f, 0.0f})};
+  const std::size_t static_triangles = scene.triangle_count();
+  add_box(scene, {0.9f, 0.0f, -2.5f}, {1.1f, 3.0f, 2.5f}, "door");
+  scene.instance_names = {"sliding wall"};
+  scene.triangle_instances.assign(scene.triangle_count(), kStaticInstance);
+  for (std::size_t t = static_triangles; t < scene.triangle_count(); ++t) scene.triangle_instances[t] = 0;
   return scene;
 }
 
