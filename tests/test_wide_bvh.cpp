@@ -278,6 +278,7 @@ struct Agreement {
   std::size_t hits = 0;
   std::size_t cut_short = 0;        // closest-hit casts past SP_MAX_CAST_PACKETS
   std::size_t lists_cut_short = 0;  // nearest-hits lists likewise
+  std::size_t blocked = 0;          // segments the binary occlusion walk calls blocked
 };
 
 // The matter query's lists, entry by entry, bit for bit.
@@ -312,6 +313,7 @@ Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vec
   Agreement agreement;
   std::size_t failures = 0;
   std::size_t list_failures = 0;
+  std::size_t blocked_failures = 0;
   for (const Ray& r : rays) {
     const sp::shader::HitList wide_list = sp::nearest_hits(bvh, r.origin, r.dir, r.tmin, r.tmax);
     sp::shader::HitList binary_list;
@@ -333,6 +335,18 @@ Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vec
                       std::bit_cast<std::uint32_t>(wide.t) == std::bit_cast<std::uint32_t>(binary.t);
     const bool same_dispatched = dispatched.triangle == wide.triangle && dispatched.cut_short == wide.cut_short &&
                                  std::bit_cast<std::uint32_t>(dispatched.t) == std::bit_cast<std::uint32_t>(wide.t);
+    // The occlusion query over the same segment: the wide walk (dispatched
+    // by segment_blocked) against the binary one the GPU runs.
+    const bool binary_blocked =
+        sp::shader::sp_segment_blocked(bvh.nodes.data(), bvh.triangles.data(), r.origin, r.dir, r.tmin, r.tmax);
+    const bool wide_blocked = sp::segment_blocked(bvh, r.origin, r.dir, r.tmin, r.tmax);
+    agreement.blocked += binary_blocked;
+    if (wide_blocked != binary_blocked && ++blocked_failures <= 5) {
+      ADD_FAILURE() << std::hexfloat << "segment of ray o=(" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z
+                    << ") d=(" << r.dir.x << ", " << r.dir.y << ", " << r.dir.z << ") t in (" << r.tmin << ", "
+                    << r.tmax << "]: wide says " << (wide_blocked ? "blocked" : "open") << ", binary "
+                    << (binary_blocked ? "blocked" : "open");
+    }
     if ((!same || !same_dispatched) && ++failures <= 5) {
       ADD_FAILURE() << std::hexfloat << "ray o=(" << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") d=("
                     << r.dir.x << ", " << r.dir.y << ", " << r.dir.z << ") t in (" << r.tmin << ", " << r.tmax
@@ -343,6 +357,7 @@ Agreement expect_selected_walk_same_as_binary(const sp::Bvh& bvh, const std::vec
   }
   EXPECT_EQ(failures, 0u) << "of " << rays.size() << " rays";
   EXPECT_EQ(list_failures, 0u) << "nearest-hit lists, of " << rays.size() << " rays";
+  EXPECT_EQ(blocked_failures, 0u) << "occlusion queries, of " << rays.size() << " segments";
   return agreement;
 }
 
@@ -379,6 +394,8 @@ TEST(WideBvh, RandomSoupMatchesBinary) {
     check_wide_invariants(bvh);
     Agreement a = expect_same_as_binary(bvh, vary_windows(rays_in_box(vec3(-12), vec3(12), 10000, leaf), leaf));
     EXPECT_GT(a.hits, 5000u);
+    EXPECT_GT(a.blocked, 5000u);
+    EXPECT_LT(a.blocked, a.rays - 1000u) << "segments that meet nothing are open, and tested";
   }
 }
 
@@ -621,6 +638,7 @@ TEST(WideBvh, HostileShapesCutTheSameCastsAsBinary) {
     EXPECT_GT(agreement.cut_short, 100u) << "the shape no longer defeats the tree: make it harder";
     EXPECT_LE(agreement.cut_short, rays.size() - kMissing) << "rays that miss the shape end whole";
     EXPECT_GT(agreement.lists_cut_short, 100u);
+    EXPECT_GE(agreement.blocked, agreement.cut_short) << "a walk cut short is blocked";
   }
 }
 

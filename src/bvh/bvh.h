@@ -72,9 +72,11 @@ std::uint64_t bvh_builds();
 // shared sp_closest_hit's (shaders/shared/sp_traverse.h), t bit for bit.
 HitInfo closest_hit(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
-// Whether a triangle lies at a distance in (tmin, tmax] along `dir`: the
-// shared sp_segment_blocked (shaders/shared/sp_traverse.h) over `nodes`,
-// the GPU's walk, which stops at the first triangle it meets.
+// Whether a triangle lies at a distance in (tmin, tmax] along `dir`, or the
+// walk ran out of work (SP_MAX_CAST_PACKETS): the shared sp_segment_blocked
+// (shaders/shared/sp_traverse.h), the GPU's walk, which stops at the first
+// triangle it meets. Traverses `wide` when there is one, with the same
+// answer.
 bool segment_blocked(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
 // The nearest SP_MATTER_MAX_HITS hits with distance in (tmin, tmax], sorted

@@ -27,6 +27,7 @@ shader::HitList nearest_hits(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, fl
 
 bool segment_blocked(const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   if (bvh.nodes.empty()) return false;
+  if (bvh.wide) return wide_segment_blocked(*bvh.wide, origin, dir, tmin, tmax);
   return shader::sp_segment_blocked(bvh.nodes.data(), bvh.triangles.data(), origin, dir, tmin, tmax);
 }
 

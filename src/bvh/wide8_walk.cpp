@@ -34,6 +34,10 @@ shader::HitList nearest_hits(const WideBvh&, const Bvh&, glm::vec3, glm::vec3, f
   assert(false);
   return {};
 }
+bool segment_blocked(const WideBvh&, glm::vec3, glm::vec3, float, float) {
+  assert(false);
+  return true;
+}
 
 #else
 
@@ -377,6 +381,12 @@ SP_TARGET_WIDE8 shader::HitList nearest_hits(const WideBvh& wide, const Bvh& bvh
   Nearest nearest = Nearest::start(bvh, dir, tmax);
   walk8(wide, origin, dir, tmin, tmax, nearest);
   return nearest.list;
+}
+
+SP_TARGET_WIDE8 bool segment_blocked(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+  Blocker blocker = Blocker::start(tmax);
+  walk8(wide, origin, dir, tmin, tmax, blocker);
+  return blocker.blocked;
 }
 
 #endif

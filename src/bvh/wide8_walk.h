@@ -22,5 +22,7 @@ void collapse(const Bvh& bvh, std::span<const std::uint32_t> leaf_packets, std::
 HitInfo closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 shader::HitList nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                              float tmax);
+// wide_segment_blocked on wide.nodes8 (not empty).
+bool segment_blocked(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
 
 }  // namespace sp::wide8

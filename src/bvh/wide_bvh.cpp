@@ -223,6 +223,13 @@ SP_ALWAYS_INLINE shader::HitList nearest_hits_in(const WideBvh& wide, const Bvh&
   return nearest.list;
 }
 
+SP_ALWAYS_INLINE bool segment_blocked_in(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin,
+                                         float tmax) {
+  Blocker blocker = Blocker::start(tmax);
+  walk(wide, origin, dir, tmin, tmax, blocker);
+  return blocker.blocked;
+}
+
 #if defined(SP_WIDE_AVX512)
 SP_TARGET_AVX512 HitInfo closest_hit_avx512(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir,
                                             float tmin, float tmax) {
@@ -231,6 +238,10 @@ SP_TARGET_AVX512 HitInfo closest_hit_avx512(const WideBvh& wide, const Bvh& bvh,
 SP_TARGET_AVX512 shader::HitList nearest_hits_avx512(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin,
                                                      glm::vec3 dir, float tmin, float tmax) {
   return nearest_hits_in(wide, bvh, origin, dir, tmin, tmax);
+}
+SP_TARGET_AVX512 bool segment_blocked_avx512(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin,
+                                             float tmax) {
+  return segment_blocked_in(wide, origin, dir, tmin, tmax);
 }
 #endif
 
@@ -310,6 +321,20 @@ shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3
   }
 #endif
   return nearest_hits_in(wide, bvh, origin, dir, tmin, tmax);
+}
+
+bool wide_segment_blocked(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
+#if defined(SP_WIDE_AVX512)
+  switch (walk_on(wide)) {
+    case WideWalk::Avx512Wide8:
+      return wide8::segment_blocked(wide, origin, dir, tmin, tmax);
+    case WideWalk::Avx512:
+      return segment_blocked_avx512(wide, origin, dir, tmin, tmax);
+    case WideWalk::Baseline:
+      break;
+  }
+#endif
+  return segment_blocked_in(wide, origin, dir, tmin, tmax);
 }
 
 }  // namespace sp

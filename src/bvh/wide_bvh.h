@@ -156,6 +156,10 @@ HitInfo wide_closest_hit(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, 
 shader::HitList wide_nearest_hits(const WideBvh& wide, const Bvh& bvh, glm::vec3 origin, glm::vec3 dir, float tmin,
                                   float tmax);
 
+// sp_segment_blocked's answer (is anything in (tmin, tmax]?), the same way:
+// the closest-hit walk, ended by the first hit it finds.
+bool wide_segment_blocked(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax);
+
 // The compiled copies of the walk above. Every one gives the same answer
 // bit for bit; tests/test_wide_bvh.cpp checks each this CPU runs.
 enum class WideWalk {

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "bvh/wide_bvh.h"
 #include "sp_traverse.h"
@@ -173,6 +174,30 @@ struct Best {
   void offer(float t, std::uint32_t triangle) {
     if (t < hit.t || scene(triangle) < scene(hit.triangle)) hit = HitInfo{t, triangle, 0u};
   }
+};
+
+// Whether anything lies in (tmin, tmax], as sp_segment_blocked says: the
+// closest-hit walk with nothing found yet, ended by the first hit. Its limit
+// then drops below every box and triangle, so the walk leaves the leaf it
+// is in and pops nothing more. A walk cut short counts as blocked. With no
+// hit the limit stays tmax, so the walk enters the leaves the closest-hit
+// walk (and the binary one) would, and is cut short where they are.
+struct Blocker {
+  float tmax;
+  std::uint32_t packets;
+  bool blocked;
+
+  static Blocker start(float tmax) { return Blocker{tmax, 0u, false}; }
+
+  bool enter_leaf(std::uint32_t leaf_packets) {
+    packets += leaf_packets;
+    if (packets <= SP_MAX_CAST_PACKETS) return true;
+    blocked = true;
+    return false;
+  }
+
+  float limit() const { return blocked ? -std::numeric_limits<float>::infinity() : tmax; }
+  void offer(float, std::uint32_t) { blocked = true; }
 };
 
 // The nearest hits, with sp_nearest_hits' list, keys and limit.

@@ -74,13 +74,9 @@ void connect_indicators(const TraceContext& context, std::span<shader::Indicator
     const Connection c = sp_connection(ind, p);
     bool open = false;
     if (c.candidate != 0u) {
-      // The wide walk's closest hit: blocked exactly when the GPU's
-      // occlusion walk (sp_segment_blocked) says so. Both enter the same
-      // leaves in the same order until the first hit; the closest-hit walk
-      // may go on past it, and if it then runs out of work that still
-      // counts as blocked.
-      const HitInfo hit = closest_hit(*context.bvh, c.origin, c.dir, 0.0f, c.distance);
-      open = hit.triangle == SP_INVALID && hit.cut_short == 0u;
+      // The GPU's occlusion walk's answer (sp_segment_blocked), from the
+      // wide tree: it stops at the first triangle it meets.
+      open = !segment_blocked(*context.bvh, c.origin, c.dir, 0.0f, c.distance);
       counters.connections += 1;
     }
     sp_finish_connection(ind, c, open, context.sources[ind.source_slot], p);
