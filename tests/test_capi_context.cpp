@@ -383,6 +383,34 @@ TEST(CapiSimulationOptions, DeviceNameChoosesTheGpu) {
   EXPECT_EQ(sp_scene_destroy(scene), SP_OK);
 }
 
+// The kernels' width reaches the GPU backend: 128 (a multiple of every
+// subgroup width, within the limit every device has) runs; a width past any
+// device's limit is refused, naming the field.
+TEST(CapiSimulationOptions, WorkgroupSizeReachesTheGpuBackend) {
+  const Cube cube;
+  sp_scene* scene = nullptr;
+  ASSERT_EQ(sp_scene_create(cube.vertices.data(), cube.triangles(), cube.layers.data(), cube.names, 2, &scene), SP_OK);
+  sp_simulation_options options;
+  sp_simulation_options_init(&options);
+  EXPECT_EQ(options.workgroup_size, 0u);
+  options.backend = SP_BACKEND_GPU;
+  options.workgroup_size = 128;
+  sp_simulation* simulation = nullptr;
+  ASSERT_EQ(sp_simulation_create_with_options(scene, kCubeConfig, &options, &simulation), SP_OK) << last_error();
+  ASSERT_EQ(sp_simulation_step(simulation), SP_OK) << last_error();
+  sp_stats stats;
+  ASSERT_EQ(sp_simulation_stats(simulation, &stats), SP_OK);
+  EXPECT_EQ(stats.rays_emitted, 200u);
+  EXPECT_EQ(sp_simulation_destroy(simulation), SP_OK);
+
+  simulation = nullptr;
+  options.workgroup_size = 1u << 20;
+  EXPECT_EQ(sp_simulation_create_with_options(scene, kCubeConfig, &options, &simulation), SP_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(last_error().find("workgroup_size"), std::string::npos) << last_error();
+  EXPECT_EQ(simulation, nullptr);
+  EXPECT_EQ(sp_scene_destroy(scene), SP_OK);
+}
+
 TEST(CapiLayerStats, EveryRayHitsTheEnclosingLayerAndNoneTheFarOne) {
   const Cube cube;
   sp_scene* scene = nullptr;

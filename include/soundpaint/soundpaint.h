@@ -415,6 +415,13 @@ typedef struct sp_simulation_options {
   /* GPU backend: 1 (default) accepts a CPU posing as a GPU (lavapipe); 0
    * refuses it (SP_ERROR_VULKAN), the CPU backend being faster there. */
   int allow_cpu_device;
+  /* GPU backend: threads per workgroup of the simulation's kernels
+   * (sp::GpuSettings::workgroup_size); 0 (default): the device's choice, 64
+   * on a GPU, the subgroup width on a CPU device (lavapipe). Otherwise a
+   * multiple of the device's subgroup width within its limits, else
+   * creation fails with SP_ERROR_INVALID_ARGUMENT naming workgroup_size.
+   * Results do not depend on it. */
+  uint32_t workgroup_size;
 } sp_simulation_options;
 
 /* Fills *options with the defaults (those of sp_simulation_create with

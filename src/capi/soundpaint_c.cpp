@@ -271,6 +271,7 @@ void create_simulation(sp_context& context, const sp_scene* scene, const char* c
   settings.gpu.validation = (context.flags & SP_CONTEXT_VULKAN_VALIDATION) != 0;
   if (options.device_name != nullptr) settings.gpu.device_name = options.device_name;
   settings.gpu.allow_cpu_device = options.allow_cpu_device != 0;
+  settings.gpu.workgroup_size = options.workgroup_size;
   sp::capi::WorldOptions world_options;
   world_options.threads = threads;
   world_options.ray_budget = options.ray_budget;
@@ -308,6 +309,7 @@ void sp_simulation_options_init(sp_simulation_options* options) noexcept {
   options->backend = SP_BACKEND_AUTO;
   options->memory_budget_bytes = sp::kDefaultMemoryBudgetBytes;
   options->allow_cpu_device = sp::GpuSettings{}.allow_cpu_device ? 1 : 0;
+  options->workgroup_size = sp::GpuSettings{}.workgroup_size;
 }
 
 sp_result sp_simulation_create_with_options(const sp_scene* scene, const char* config_json,
