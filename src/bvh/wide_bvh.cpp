@@ -223,8 +223,7 @@ SP_ALWAYS_INLINE shader::HitList nearest_hits_in(const WideBvh& wide, const Bvh&
   return nearest.list;
 }
 
-SP_ALWAYS_INLINE bool segment_blocked_in(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin,
-                                         float tmax) {
+SP_ALWAYS_INLINE bool segment_blocked_in(const WideBvh& wide, glm::vec3 origin, glm::vec3 dir, float tmin, float tmax) {
   Blocker blocker = Blocker::start(tmax);
   walk(wide, origin, dir, tmin, tmax, blocker);
   return blocker.blocked;
