@@ -128,9 +128,7 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
   // Wider only when the budget's rays would need more workgroups than the
   // device dispatches.
   std::uint32_t width = subgroup;
-  while (width < SP_WORKGROUP_SIZE &&
-         (std::uint64_t{max_rays} + width - 1) / width > limits.maxComputeWorkGroupCount[0])
-    width *= 2;
+  while (width < SP_WORKGROUP_SIZE && workgroups_for(max_rays, width) > limits.maxComputeWorkGroupCount[0]) width *= 2;
   return width;
 }
 
@@ -149,7 +147,7 @@ ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::
   sizes.capture_capacity = sizes.max_rays * sizes.iterations;
   sizes.ring_capacity = config.max_indicators;
   const std::uint32_t max_groups = context.properties().limits.maxComputeWorkGroupCount[0];
-  if ((std::uint64_t{sizes.max_rays} + workgroup_size - 1) / workgroup_size > max_groups)
+  if (workgroups_for(sizes.max_rays, workgroup_size) > max_groups)
     throw Exception(ErrorCode::LimitExceeded, "ray_budget " + std::to_string(config.ray_budget) +
                                                   " needs more workgroups of " + std::to_string(workgroup_size) +
                                                   " threads than the device's limit of " + std::to_string(max_groups));

@@ -35,6 +35,12 @@ struct ConfigSizes {
   std::uint32_t ring_capacity = 0;     // max_indicators
 };
 
+// Workgroups of `width` threads that `invocations` need (the host's twin of
+// group_count in shaders/gpu_bindings.glsl).
+inline std::uint64_t workgroups_for(std::uint64_t invocations, std::uint32_t width) {
+  return (invocations + width - 1u) / width;
+}
+
 // Threads per workgroup of the simulation's kernels on `context`'s device
 // for a budget of `max_rays`: the one ContextSettings asked for; else, on a
 // CPU device, its subgroup width (lavapipe runs a workgroup's invocations a

@@ -36,7 +36,7 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uin
   bind(cmd, r, r.kernels.emit, 0, 0);
   const std::uint32_t emit_threads = std::max(r.max_rays, r.layer_count * SP_COUNTERS_PER_LAYER);
   ++count.dispatches;
-  vkCmdDispatch(cmd, (emit_threads + r.workgroup_size - 1) / r.workgroup_size, 1, 1);
+  vkCmdDispatch(cmd, static_cast<std::uint32_t>(workgroups_for(emit_threads, r.workgroup_size)), 1, 1);
   stamp(StageKernel::Emit);
   // Emitted rays, queue 0 and its indirect arguments feed the first trace.
   ++count.barriers;
