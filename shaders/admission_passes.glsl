@@ -21,8 +21,9 @@
 
 // A step with at most this many indicators is admitted by connect.comp's
 // last subgroup, the admit dispatches then dispatching no group
-// (gpu::inline_admission_max: 64 on a GPU, every step on a CPU device).
-layout(constant_id = SP_SPEC_ADMIT_INLINE_MAX) const uint kAdmitInlineMax = 64u;
+// (gpu::inline_admission_max: one workgroup's worth on a GPU, every step
+// on a CPU device).
+layout(constant_id = SP_SPEC_ADMIT_INLINE_MAX) const uint kAdmitInlineMax = SP_WORKGROUP_SIZE;
 
 // The canonical key of an indicator of this step: (iteration, ray, kind).
 uint order_key(Indicator ind) { return (ind.iteration * push.max_rays + ind.ray_index) * 2u + ind.kind; }

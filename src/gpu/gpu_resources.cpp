@@ -135,7 +135,7 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
 std::uint32_t inline_admission_max(const vk::Context& context) {
   if (context.requested_inline_admission_max() != 0) return context.requested_inline_admission_max();
   return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? std::numeric_limits<std::uint32_t>::max()
-                                                                        : 64u;
+                                                                        : SP_WORKGROUP_SIZE;
 }
 
 ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size) {

@@ -57,9 +57,9 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
 // dispatches then running no group: the one ContextSettings asked for;
 // else, on a CPU device, every step (there each dispatch is a thread-pool
 // hand-off that costs more than one subgroup's walk over even the 9,000
-// spots of a 2,500-ray step: bench/RESULTS.md section 30); else 64 (on a
-// GPU one subgroup's walk over many spots would cost more than the two
-// dispatches).
+// spots of a 2,500-ray step: bench/RESULTS.md section 30); else one GPU
+// workgroup's worth, SP_WORKGROUP_SIZE (on a GPU one subgroup's walk over
+// many spots would cost more than the two dispatches).
 std::uint32_t inline_admission_max(const vk::Context& context);
 
 // Throws sp::Exception(LimitExceeded) when ray_budget needs more

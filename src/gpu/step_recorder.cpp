@@ -81,7 +81,7 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uin
 
   // The ring admits its share of the step's indicators (admit.comp): the
   // tie-break pass, then the copy, both over the capture list. A step of
-  // at most one workgroup of indicators was admitted by connect's last
+  // at most inline_admission_max indicators was admitted by connect's last
   // subgroup: these then dispatch no group.
   const VkDeviceSize admit_args = offsetof(shader::Control, admit_group_count_x);
   bind(cmd, r, r.kernels.admit, 0, SP_ADMIT_TIEBREAK);
