@@ -38,9 +38,14 @@ const std::string kScene = std::string(SP_SCENES_DIR) + "/two_rooms.gltf";
 
 bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
-// A virtual X display of its own for each run (-a), validation on.
-std::string under_xvfb(const std::string& args) {
-  return "SOUNDPAINT_VALIDATION=1 xvfb-run -a -s '-screen 0 1024x768x24' " + kCli + " view " + args;
+// A virtual X display of its own for each run (-a), validation on. The X
+// cookie is kept in the test's scratch folder (-f): left to itself,
+// xvfb-run makes a folder of its own for it and, when removing that folder
+// fails at the end, exits 5 in place of the viewer's status, which a test
+// would then read as the viewer's.
+std::string under_xvfb(const ScratchDir& scratch, const std::string& args) {
+  return "SOUNDPAINT_VALIDATION=1 xvfb-run -a -f '" + (scratch / "xauthority").string() +
+         "' -s '-screen 0 1024x768x24' " + kCli + " view " + args;
 }
 
 // A viewer run with --config-checks-from-stdin, driven by the test: each
@@ -156,11 +161,11 @@ TEST_P(ViewBackends, ScriptedRunShowsTheIndicatorsWithoutValidationMessages) {
   ScratchDir dir("view");
   std::ofstream(dir / "silent.json") << R"({"ray_budget": 0})";
   const std::string common = kScene + " --backend " + GetParam() + " --width 480 --height 320 --frames 90 --no-panel";
-  auto sound = run_command(under_xvfb(common + " --screenshot " + (dir / "sound.png").string()), dir.path());
+  auto sound = run_command(under_xvfb(dir, common + " --screenshot " + (dir / "sound.png").string()), dir.path());
   ASSERT_EQ(sound.status, 0) << sound.err;
   EXPECT_EQ(sound.err.find("alidation"), std::string::npos) << sound.err;
-  auto silent = run_command(under_xvfb(common + " --config " + (dir / "silent.json").string() + " --screenshot " +
-                                       (dir / "silent.png").string()),
+  auto silent = run_command(under_xvfb(dir, common + " --config " + (dir / "silent.json").string() + " --screenshot " +
+                                                (dir / "silent.png").string()),
                             dir.path());
   ASSERT_EQ(silent.status, 0) << silent.err;
   const auto with_sound = test::load_png(dir / "sound.png");
@@ -173,10 +178,10 @@ TEST_P(ViewBackends, ScriptedRunShowsTheIndicatorsWithoutValidationMessages) {
   EXPECT_GT(spots, 400u);
   EXPECT_LT(spots, std::size_t{480} * 320 / 2);
   // The panel, shown by default, covers a good part of the top left.
-  auto panel =
-      run_command(under_xvfb(kScene + " --backend " + GetParam() + " --width 480 --height 320 --frames 90 --config " +
-                             (dir / "silent.json").string() + " --screenshot " + (dir / "panel.png").string()),
-                  dir.path());
+  auto panel = run_command(
+      under_xvfb(dir, kScene + " --backend " + GetParam() + " --width 480 --height 320 --frames 90 --config " +
+                          (dir / "silent.json").string() + " --screenshot " + (dir / "panel.png").string()),
+      dir.path());
   ASSERT_EQ(panel.status, 0) << panel.err;
   const auto with_panel = test::load_png(dir / "panel.png");
   ASSERT_TRUE(with_panel);
@@ -194,10 +199,10 @@ TEST(View, AResizedWindowGetsANewSwapchainAndKeepsDrawing) {
   // panel's framebuffers follow, and the last frame has the new size.
   SKIP_WITHOUT_XVFB();
   ScratchDir dir("view-resize");
-  auto r =
-      run_command(under_xvfb(kScene + " --backend gpu --width 320 --height 240 --frames 30 --resize-at 10,400,300" +
-                             " --screenshot " + (dir / "resized.png").string()),
-                  dir.path());
+  auto r = run_command(
+      under_xvfb(dir, kScene + " --backend gpu --width 320 --height 240 --frames 30 --resize-at 10,400,300" +
+                          " --screenshot " + (dir / "resized.png").string()),
+      dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("alidation"), std::string::npos) << r.err;
   const auto picture = test::load_png(dir / "resized.png");
@@ -237,7 +242,8 @@ TEST(View, AConfigFileSavedWhileRunningIsReloadedBeforeTheFrameNamed) {
   ScratchDir dir("view-reload");
   const auto config = dir / "live.json";
   std::ofstream(config) << R"({"ray_budget": 0})";
-  DrivenViewer viewer(under_xvfb(scripted_cpu_run(config, 50, dir / "reloaded.png") + " --config-checks-from-stdin"));
+  DrivenViewer viewer(
+      under_xvfb(dir, scripted_cpu_run(config, 50, dir / "reloaded.png") + " --config-checks-from-stdin"));
   ASSERT_TRUE(viewer.wait_for("watching")) << viewer.err();
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 100})";
   ASSERT_TRUE(viewer.send("20"));
@@ -251,12 +257,12 @@ TEST(View, AConfigFileSavedWhileRunningIsReloadedBeforeTheFrameNamed) {
   EXPECT_EQ(viewer.err().find("alidation"), std::string::npos) << viewer.err();
 
   for (const std::uint64_t frames : {std::uint64_t{30}, std::uint64_t{29}}) {
-    auto fresh =
-        run_command(under_xvfb(scripted_cpu_run(config, frames, dir / (std::to_string(frames) + ".png"))), dir.path());
+    auto fresh = run_command(under_xvfb(dir, scripted_cpu_run(config, frames, dir / (std::to_string(frames) + ".png"))),
+                             dir.path());
     ASSERT_EQ(fresh.status, 0) << fresh.err;
   }
   std::ofstream(dir / "silent.json") << R"({"ray_budget": 0})";
-  auto silent = run_command(under_xvfb(scripted_cpu_run(dir / "silent.json", 50, dir / "silent.png")), dir.path());
+  auto silent = run_command(under_xvfb(dir, scripted_cpu_run(dir / "silent.json", 50, dir / "silent.png")), dir.path());
   ASSERT_EQ(silent.status, 0) << silent.err;
   EXPECT_EQ(pixels_between(dir / "reloaded.png", dir / "30.png"), 0u) << "not the frames of the new config from 20 on";
   EXPECT_GT(pixels_between(dir / "30.png", dir / "29.png"), 0u) << "a frame's shift would not show";
@@ -272,7 +278,7 @@ TEST(View, AReloadThatCannotRunKeepsTheRunningConfigAndSaysWhy) {
   ScratchDir dir("view-over-budget");
   const auto config = dir / "live.json";
   std::ofstream(config) << R"({"ray_budget": 100})";
-  DrivenViewer viewer(under_xvfb(scripted_cpu_run(config, 40, dir / "kept.png") + " --config-checks-from-stdin"));
+  DrivenViewer viewer(under_xvfb(dir, scripted_cpu_run(config, 40, dir / "kept.png") + " --config-checks-from-stdin"));
   ASSERT_TRUE(viewer.wait_for("watching")) << viewer.err();
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 16777216, "max_bounces": 64})";
   ASSERT_TRUE(viewer.send("10"));
@@ -284,10 +290,10 @@ TEST(View, AReloadThatCannotRunKeepsTheRunningConfigAndSaysWhy) {
   EXPECT_EQ(viewer.err().find("reloaded"), std::string::npos) << viewer.err();
 
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 100})";
-  auto unchanged = run_command(under_xvfb(scripted_cpu_run(config, 40, dir / "unchanged.png")), dir.path());
+  auto unchanged = run_command(under_xvfb(dir, scripted_cpu_run(config, 40, dir / "unchanged.png")), dir.path());
   ASSERT_EQ(unchanged.status, 0) << unchanged.err;
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 0})";
-  auto silent = run_command(under_xvfb(scripted_cpu_run(config, 40, dir / "silent.png")), dir.path());
+  auto silent = run_command(under_xvfb(dir, scripted_cpu_run(config, 40, dir / "silent.png")), dir.path());
   ASSERT_EQ(silent.status, 0) << silent.err;
   EXPECT_EQ(pixels_between(dir / "kept.png", dir / "unchanged.png"), 0u);
   EXPECT_GT(pixels_between(dir / "kept.png", dir / "silent.png"), 200u);
@@ -303,8 +309,9 @@ TEST(View, ASaveInTwoPartsWithinOneMtimeTickIsReloaded) {
   ScratchDir dir("view-two-part");
   const auto config = dir / "live.json";
   std::ofstream(config) << R"({"ray_budget": 0})";
-  DrivenViewer viewer(under_xvfb(kScene + " --backend cpu --width 320 --height 240 --frames 10 --no-panel --config " +
-                                 config.string() + " --config-checks-from-stdin"));
+  DrivenViewer viewer(under_xvfb(dir, kScene +
+                                          " --backend cpu --width 320 --height 240 --frames 10 --no-panel --config " +
+                                          config.string() + " --config-checks-from-stdin"));
   ASSERT_TRUE(viewer.wait_for("watching")) << viewer.err();
   std::ofstream(config, std::ios::trunc) << R"({"ray_budget": 1)";
   struct stat first {};
@@ -329,8 +336,9 @@ TEST(View, AScriptedCheckMustNameAFrame) {
   ScratchDir dir("view-bad-script");
   const auto config = dir / "live.json";
   std::ofstream(config) << R"({"ray_budget": 0})";
-  DrivenViewer viewer(under_xvfb(kScene + " --backend cpu --width 160 --height 120 --frames 10 --no-panel --config " +
-                                 config.string() + " --config-checks-from-stdin"));
+  DrivenViewer viewer(under_xvfb(dir, kScene +
+                                          " --backend cpu --width 160 --height 120 --frames 10 --no-panel --config " +
+                                          config.string() + " --config-checks-from-stdin"));
   ASSERT_TRUE(viewer.wait_for("watching")) << viewer.err();
   ASSERT_TRUE(viewer.send("check"));
   EXPECT_NE(viewer.finish(), 0) << viewer.err();
@@ -368,13 +376,13 @@ TEST(View, MemoryBudgetIsAnOptionThatReachesTheSimulator) {
   ScratchDir dir("view-budget");
   std::ofstream(dir / "big.json") << R"({"ray_budget": 50000, "max_bounces": 64})";
   const std::string common = kScene + " --backend cpu --width 160 --height 120 --frames 3 --no-panel";
-  auto refused = run_command(under_xvfb(common + " --config " + (dir / "big.json").string()), dir.path());
+  auto refused = run_command(under_xvfb(dir, common + " --config " + (dir / "big.json").string()), dir.path());
   EXPECT_EQ(refused.status, 1);
   EXPECT_NE(refused.err.find("over the memory budget of 2.0 GiB"), std::string::npos) << refused.err;
-  auto raised =
-      run_command(under_xvfb(common + " --config " + (dir / "big.json").string() + " --memory-budget 4G"), dir.path());
+  auto raised = run_command(
+      under_xvfb(dir, common + " --config " + (dir / "big.json").string() + " --memory-budget 4G"), dir.path());
   EXPECT_EQ(raised.status, 0) << raised.err;
-  auto lowered = run_command(under_xvfb(common + " --memory-budget 1M"), dir.path());
+  auto lowered = run_command(under_xvfb(dir, common + " --memory-budget 1M"), dir.path());
   EXPECT_EQ(lowered.status, 1);
   EXPECT_NE(lowered.err.find("over the memory budget of 1.0 MiB"), std::string::npos) << lowered.err;
   auto bad = run_command(kCli + " view " + kScene + " --frames 1 --memory-budget 4Q", dir.path());
@@ -388,8 +396,8 @@ TEST(View, TheStartViewComesFromTheCommandLine) {
   SKIP_WITHOUT_XVFB();
   ScratchDir dir("view-camera");
   auto shot = [&](const std::string& look, const std::string& name) {
-    auto r = run_command(under_xvfb(kScene + " --backend cpu --width 160 --height 120 --frames 2 --no-panel " + look +
-                                    " --screenshot " + (dir / name).string()),
+    auto r = run_command(under_xvfb(dir, kScene + " --backend cpu --width 160 --height 120 --frames 2 --no-panel " +
+                                             look + " --screenshot " + (dir / name).string()),
                          dir.path());
     EXPECT_EQ(r.status, 0) << r.err;
     return test::load_png(dir / name);
