@@ -10,7 +10,8 @@
 
 namespace sp::vk {
 
-StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_count, const char* name) {
+StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_count, const char* name,
+                                 std::uint32_t texel_binding_count) {
   const std::string label = name != nullptr ? name : "storage bindings";
   if (binding_count == 0) throw Exception(ErrorCode::InvalidArgument, label + ": needs at least one binding");
 
@@ -23,9 +24,18 @@ StorageBindings::StorageBindings(const Context& context, std::uint32_t binding_c
     // through a set of the same layout.
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   }
+  for (std::uint32_t i = 0; i < texel_binding_count; ++i) {
+    VkDescriptorSetLayoutBinding texels{};
+    texels.binding = binding_count + i;
+    texels.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    texels.descriptorCount = 1;
+    texels.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    bindings.push_back(texels);
+  }
   layout_ = create_descriptor_set_layout(context, bindings, (label + " layout").c_str());
-  pool_ =
-      create_descriptor_pool(context, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count, 1, (label + " pool").c_str());
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, binding_count},
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texel_binding_count}};
+  pool_ = create_descriptor_pool(context, sizes, 1, (label + " pool").c_str());
   set_ = allocate_descriptor_set(context, pool_.get(), layout_.get(), label.c_str());
 }
 
@@ -36,6 +46,10 @@ void StorageBindings::bind(const Context& context, std::uint32_t binding, const 
 void StorageBindings::bind(const Context& context, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset,
                            VkDeviceSize range) {
   write_descriptor(context, set_, binding, VkDescriptorBufferInfo{buffer, offset, range});
+}
+
+void StorageBindings::bind(const Context& context, std::uint32_t binding, VkBufferView view) {
+  write_descriptor(context, set_, binding, view);
 }
 
 ComputePipeline::ComputePipeline(const Context& context, std::span<const std::uint32_t> spirv,

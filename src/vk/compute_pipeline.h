@@ -17,11 +17,13 @@ namespace sp::vk {
 
 // A descriptor set layout of `binding_count` (> 0) storage buffers (bindings
 // 0..n-1, visible to the compute, vertex and fragment stages so the indicator
-// drawing pass can share the layout), its pool and one set.
+// drawing pass can share the layout), then `texel_binding_count` uniform
+// texel buffers (bindings n.., compute only), its pool and one set.
 class StorageBindings {
  public:
   StorageBindings() = default;
-  StorageBindings(const Context& context, std::uint32_t binding_count, const char* name);
+  StorageBindings(const Context& context, std::uint32_t binding_count, const char* name,
+                  std::uint32_t texel_binding_count = 0);
 
   // Points binding `binding` at the whole of `buffer`. Not while a command
   // buffer using the set is pending.
@@ -29,6 +31,9 @@ class StorageBindings {
   // The same for a buffer owned elsewhere, or a part of one.
   void bind(const Context& context, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
             VkDeviceSize range = VK_WHOLE_SIZE);
+  // Points texel binding `binding` (counted from the first storage binding)
+  // at `view`. Not while a command buffer using the set is pending.
+  void bind(const Context& context, std::uint32_t binding, VkBufferView view);
 
   VkDescriptorSetLayout layout() const { return layout_.get(); }
   VkDescriptorSet set() const { return set_; }

@@ -38,6 +38,10 @@ struct ContextSettings {
   // The most spots a step may have for the connect pass to admit them
   // itself; 0: the device's choice (gpu::inline_admission_max).
   std::uint32_t inline_admission_max = 0;
+  // The most texels the walks' tree may take in one uniform texel buffer,
+  // below the device's maxTexelBufferElements; 0: the device's limit. A tree
+  // needing more is read from its storage buffers (gpu::bvh_texels_usable).
+  std::uint32_t max_texel_buffer_elements = 0;
 };
 
 // What the compute kernels need of the device's subgroups
@@ -83,6 +87,8 @@ class Context {
   std::uint32_t requested_kernel_workgroup_size() const { return requested_kernel_workgroup_size_; }
   // ContextSettings::inline_admission_max (0 when borrowed).
   std::uint32_t requested_inline_admission_max() const { return requested_inline_admission_max_; }
+  // ContextSettings::max_texel_buffer_elements (0 when borrowed).
+  std::uint32_t requested_max_texel_buffer_elements() const { return requested_max_texel_buffer_elements_; }
 
   // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
   std::string description() const;
@@ -137,6 +143,7 @@ class Context {
   std::uint32_t subgroup_size_ = 1;
   std::uint32_t requested_kernel_workgroup_size_ = 0;
   std::uint32_t requested_inline_admission_max_ = 0;
+  std::uint32_t requested_max_texel_buffer_elements_ = 0;
   UniqueCommandPool one_time_pool_;  // owned contexts only
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   bool borrowed_ = false;

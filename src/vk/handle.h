@@ -60,5 +60,6 @@ using UniqueQueryPool = DeviceObject<VkQueryPool, vkDestroyQueryPool>;
 using UniqueImage = DeviceObject<VkImage, vkDestroyImage>;
 using UniqueImageView = DeviceObject<VkImageView, vkDestroyImageView>;
 using UniqueSampler = DeviceObject<VkSampler, vkDestroySampler>;
+using UniqueBufferView = DeviceObject<VkBufferView, vkDestroyBufferView>;
 
 }  // namespace sp::vk

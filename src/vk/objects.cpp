@@ -2,6 +2,7 @@
 #include "vk/objects.h"
 
 #include <string>
+#include <vector>
 
 #include "soundpaint/result.h"
 
@@ -32,13 +33,33 @@ UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
 UniqueDescriptorPool create_descriptor_pool(const Context& context, VkDescriptorType type, std::uint32_t descriptors,
                                             std::uint32_t max_sets, const char* name) {
   const VkDescriptorPoolSize size{type, descriptors};
+  return create_descriptor_pool(context, {&size, 1}, max_sets, name);
+}
+
+UniqueDescriptorPool create_descriptor_pool(const Context& context, std::span<const VkDescriptorPoolSize> sizes,
+                                            std::uint32_t max_sets, const char* name) {
+  // A pool size of count 0 is invalid (VUID-VkDescriptorPoolSize-descriptorCount-00302).
+  std::vector<VkDescriptorPoolSize> used;
+  for (const VkDescriptorPoolSize& size : sizes)
+    if (size.descriptorCount > 0) used.push_back(size);
   VkDescriptorPoolCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   info.maxSets = max_sets;
-  info.poolSizeCount = 1;
-  info.pPoolSizes = &size;
+  info.poolSizeCount = static_cast<std::uint32_t>(used.size());
+  info.pPoolSizes = used.data();
   return create_object<UniqueDescriptorPool>(context, vkCreateDescriptorPool, info, VK_OBJECT_TYPE_DESCRIPTOR_POOL,
                                              name);
+}
+
+UniqueBufferView create_buffer_view(const Context& context, VkBuffer buffer, VkFormat format, VkDeviceSize offset,
+                                    VkDeviceSize range, const char* name) {
+  VkBufferViewCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO;
+  info.buffer = buffer;
+  info.format = format;
+  info.offset = offset;
+  info.range = range;
+  return create_object<UniqueBufferView>(context, vkCreateBufferView, info, VK_OBJECT_TYPE_BUFFER_VIEW, name);
 }
 
 VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout,
@@ -57,7 +78,8 @@ VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool
 namespace {
 
 void write(const Context& context, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
-           const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image) {
+           const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image,
+           const VkBufferView* texel_view = nullptr) {
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
   write.dstSet = set;
@@ -66,6 +88,7 @@ void write(const Context& context, VkDescriptorSet set, std::uint32_t binding, V
   write.descriptorType = type;
   write.pBufferInfo = buffer;
   write.pImageInfo = image;
+  write.pTexelBufferView = texel_view;
   vkUpdateDescriptorSets(context.device(), 1, &write, 0, nullptr);
 }
 
@@ -79,6 +102,10 @@ void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t
 void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
                       const VkDescriptorImageInfo& image) {
   write(context, set, binding, type, nullptr, &image);
+}
+
+void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t binding, VkBufferView view) {
+  write(context, set, binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, nullptr, nullptr, &view);
 }
 
 UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,

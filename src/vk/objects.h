@@ -41,6 +41,13 @@ UniqueDescriptorSetLayout create_descriptor_set_layout(const Context& context,
 // A pool of `max_sets` sets holding `descriptors` descriptors of one type.
 UniqueDescriptorPool create_descriptor_pool(const Context& context, VkDescriptorType type, std::uint32_t descriptors,
                                             std::uint32_t max_sets, const char* name);
+// The same for descriptors of several types (entries of count 0 are left out).
+UniqueDescriptorPool create_descriptor_pool(const Context& context, std::span<const VkDescriptorPoolSize> sizes,
+                                            std::uint32_t max_sets, const char* name);
+// A view of `range` bytes of `buffer` from `offset` as texels of `format`,
+// for a uniform texel buffer binding.
+UniqueBufferView create_buffer_view(const Context& context, VkBuffer buffer, VkFormat format, VkDeviceSize offset,
+                                    VkDeviceSize range, const char* name);
 // One set of `layout` from `pool`; freed with the pool (or its reset).
 VkDescriptorSet allocate_descriptor_set(const Context& context, VkDescriptorPool pool, VkDescriptorSetLayout layout,
                                         const char* name);
@@ -49,6 +56,8 @@ void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t
                       const VkDescriptorBufferInfo& buffer);
 void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
                       const VkDescriptorImageInfo& image);
+// Points a uniform texel buffer binding of `set` at `view`.
+void write_descriptor(const Context& context, VkDescriptorSet set, std::uint32_t binding, VkBufferView view);
 
 // Push constants (if `push_constant_bytes` > 0) are one range for `push_stages`.
 UniquePipelineLayout create_pipeline_layout(const Context& context, std::span<const VkDescriptorSetLayout> set_layouts,
