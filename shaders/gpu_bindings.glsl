@@ -7,6 +7,13 @@
 
 layout(std430, binding = SP_BINDING_NODES) readonly buffer NodesBuffer { BvhNode bvh_nodes[]; };
 layout(std430, binding = SP_BINDING_TRIANGLES) readonly buffer TrianglesBuffer { BvhTriangle bvh_triangles[]; };
+// The same two buffers as texels, read by the walks (sp_traverse.h) where
+// kBvhTexels: on lavapipe a storage-buffer read at a per-lane address is a
+// loop over the lanes, word by word, while a texel fetch is one gather per
+// channel (docs/model.md#the-tree-as-texels).
+layout(binding = SP_BINDING_NODE_TEXELS) uniform usamplerBuffer bvh_node_texels;
+layout(binding = SP_BINDING_TRIANGLE_TEXELS) uniform usamplerBuffer bvh_triangle_texels;
+layout(constant_id = SP_SPEC_BVH_TEXELS) const bool kBvhTexels = true;
 layout(std430, binding = SP_BINDING_LAYERS) readonly buffer LayersBuffer { LayerAcoustics layers[]; };
 layout(std430, binding = SP_BINDING_STEP_INPUT) readonly buffer StepInputBuffer {
   StepInput step_input;
@@ -32,6 +39,57 @@ layout(std430, binding = SP_BINDING_GUIDE) coherent buffer GuideBuffer { uint gu
 layout(std430, binding = SP_BINDING_CONNECT) buffer ConnectBuffer { uint connect_queue[]; };
 
 layout(push_constant) uniform Push { WavefrontPush push; };
+
+// The tree as the walks read it (SP_NODE_* and SP_TRIANGLE_* in
+// sp_traverse.h). Texel 2i of the nodes holds node i's bmin and
+// left_or_first, texel 2i + 1 its bmax and count; texels 4i .. 4i + 3 of the
+// triangles hold v0 and layer, v1 and scene_index, v2 and solid, normal and
+// padding: BvhNode's and BvhTriangle's own layouts, read 16 bytes at a time.
+// Reading the words as uint and the floats back from their bits keeps them
+// exact. Where !kBvhTexels the storage buffers are read instead: the
+// specialization leaves one of the two reads in the code.
+uvec4 sp_bvh_node_texel(uint i, uint half_index) { return texelFetch(bvh_node_texels, int(2u * i + half_index)); }
+uvec4 sp_bvh_triangle_texel(uint i, uint quarter) { return texelFetch(bvh_triangle_texels, int(4u * i + quarter)); }
+vec3 sp_bvh_node_min(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_node_texel(i, 0u).xyz);
+  return bvh_nodes[i].bmin;
+}
+vec3 sp_bvh_node_max(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_node_texel(i, 1u).xyz);
+  return bvh_nodes[i].bmax;
+}
+uint sp_bvh_node_first(uint i) {
+  if (kBvhTexels) return sp_bvh_node_texel(i, 0u).w;
+  return bvh_nodes[i].left_or_first;
+}
+uint sp_bvh_node_count(uint i) {
+  if (kBvhTexels) return sp_bvh_node_texel(i, 1u).w;
+  return bvh_nodes[i].count;
+}
+vec3 sp_bvh_triangle_v0(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_triangle_texel(i, 0u).xyz);
+  return bvh_triangles[i].v0;
+}
+vec3 sp_bvh_triangle_v1(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_triangle_texel(i, 1u).xyz);
+  return bvh_triangles[i].v1;
+}
+vec3 sp_bvh_triangle_v2(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_triangle_texel(i, 2u).xyz);
+  return bvh_triangles[i].v2;
+}
+uint sp_bvh_triangle_scene_index(uint i) {
+  if (kBvhTexels) return sp_bvh_triangle_texel(i, 1u).w;
+  return bvh_triangles[i].scene_index;
+}
+uint sp_bvh_triangle_solid(uint i) {
+  if (kBvhTexels) return sp_bvh_triangle_texel(i, 2u).w;
+  return bvh_triangles[i].solid;
+}
+vec3 sp_bvh_triangle_normal(uint i) {
+  if (kBvhTexels) return uintBitsToFloat(sp_bvh_triangle_texel(i, 3u).xyz);
+  return bvh_triangles[i].normal;
+}
 
 // Entries of queue `queue` (see QueueArgs): Active rays, then resolving ones.
 uint queue_length(uint queue) { return control.queues[queue].active_count + control.queues[queue].resolving_count; }

@@ -2,10 +2,8 @@
 // what a device gets by default, what is refused, and results that do not
 // depend on it.
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <memory>
-#include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -13,11 +11,14 @@
 
 #include "gpu/gpu_resources.h"
 #include "support/gpu_environment.h"
+#include "support/run_steps.h"
 #include "support/scene_builder.h"
 #include "vk/context.h"
 
 namespace sp {
 namespace {
+
+using test::expect_same_bytes;
 
 class KernelWidth : public test::GpuTest {};
 
@@ -51,9 +52,7 @@ WidthRun run_steps(Simulator& sim) {
     out.per_step.push_back(step.size());
     out.indicators.insert(out.indicators.end(), step.begin(), step.end());
   }
-  std::sort(out.indicators.begin(), out.indicators.end(), [](const Indicator& a, const Indicator& b) {
-    return std::tie(a.step, a.iteration, a.ray_index, a.kind) < std::tie(b.step, b.iteration, b.ray_index, b.kind);
-  });
+  test::sort_indicators(out.indicators);
   out.live = sim.live_indicators().value();
   out.stats = sim.stats().value();
   return out;
@@ -82,12 +81,6 @@ WidthRun run_with_the_other_admission() {
   WidthRun out = run_steps(*sim);
   EXPECT_EQ(context->validation_message_count(), 0u);
   return out;
-}
-
-void expect_same_bytes(const std::vector<Indicator>& got, const std::vector<Indicator>& want) {
-  ASSERT_EQ(got.size(), want.size());
-  for (std::size_t i = 0; i < want.size(); ++i)
-    ASSERT_EQ(std::memcmp(&got[i], &want[i], sizeof(Indicator)), 0) << "indicator " << i;
 }
 
 TEST_F(KernelWidth, ACpuDeviceGetsItsSubgroupWidthWiderOnlyForABudgetThatNeedsIt) {

@@ -22,6 +22,11 @@
 #define SP_BINDING_GUIDE 13
 #define SP_BINDING_CONNECT 14
 #define SP_BINDING_COUNT 15
+// Uniform texel buffers after them: the tree's nodes and triangles again,
+// as RGBA32UI texels (two a node, four a triangle), for the walks.
+#define SP_BINDING_NODE_TEXELS 15
+#define SP_BINDING_TRIANGLE_TEXELS 16
+#define SP_TEXEL_BINDING_COUNT 2
 
 // Per-layer counters: SP_COUNTERS_PER_LAYER per layer per step, in the slot
 // order below, then 2 * SP_COUNTERS_PER_LAYER per layer of 64-bit totals as

@@ -7,9 +7,9 @@
 // of Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013.
 //
 // Buffers: C++ passes `const BvhNode* bvh_nodes, const BvhTriangle*
-// bvh_triangles` through SP_BVH_ARGS_DECL; GLSL declares storage buffers with
-// those same names before including this file and defines SP_BVH_ARGS_DECL
-// empty.
+// bvh_triangles` through SP_BVH_ARGS_DECL; GLSL includes gpu_bindings.glsl,
+// whose accessors read the tree, before this file and defines
+// SP_BVH_ARGS_DECL empty.
 #ifndef SP_TRAVERSE_H
 #define SP_TRAVERSE_H
 
@@ -21,6 +21,37 @@
 #else
 #define SP_BVH_ARGS_DECL
 #define SP_BVH_ARGS
+#endif
+
+// The walks read the tree through these accessors. C++ reads the arrays;
+// GLSL calls gpu_bindings.glsl's functions, which read uniform texel
+// buffers where the device allows (docs/model.md#the-tree-as-texels). A
+// node's children are tested before it is entered, and the test reads the
+// two texels that also hold the child's first index and count: the walks
+// keep those of the node they enter, and read them again only for a node
+// popped from the stack.
+#ifdef __cplusplus
+#define SP_NODE_MIN(i) bvh_nodes[i].bmin
+#define SP_NODE_MAX(i) bvh_nodes[i].bmax
+#define SP_NODE_FIRST(i) bvh_nodes[i].left_or_first
+#define SP_NODE_COUNT(i) bvh_nodes[i].count
+#define SP_TRIANGLE_V0(i) bvh_triangles[i].v0
+#define SP_TRIANGLE_V1(i) bvh_triangles[i].v1
+#define SP_TRIANGLE_V2(i) bvh_triangles[i].v2
+#define SP_TRIANGLE_SCENE_INDEX(i) bvh_triangles[i].scene_index
+#define SP_TRIANGLE_SOLID(i) bvh_triangles[i].solid
+#define SP_TRIANGLE_NORMAL(i) bvh_triangles[i].normal
+#else
+#define SP_NODE_MIN(i) sp_bvh_node_min(i)
+#define SP_NODE_MAX(i) sp_bvh_node_max(i)
+#define SP_NODE_FIRST(i) sp_bvh_node_first(i)
+#define SP_NODE_COUNT(i) sp_bvh_node_count(i)
+#define SP_TRIANGLE_V0(i) sp_bvh_triangle_v0(i)
+#define SP_TRIANGLE_V1(i) sp_bvh_triangle_v1(i)
+#define SP_TRIANGLE_V2(i) sp_bvh_triangle_v2(i)
+#define SP_TRIANGLE_SCENE_INDEX(i) sp_bvh_triangle_scene_index(i)
+#define SP_TRIANGLE_SOLID(i) sp_bvh_triangle_solid(i)
+#define SP_TRIANGLE_NORMAL(i) sp_bvh_triangle_normal(i)
 #endif
 
 SP_BEGIN_NAMESPACE
@@ -163,42 +194,49 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
   uint node_index = 0u;
+  uint node_count = SP_NODE_COUNT(0u);
+  uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
-  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, best.t) == SP_FAR) return best;
+  if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), best.t) == SP_FAR) return best;
 
   for (;;) {
-    BvhNode node = bvh_nodes[node_index];
-    if (node.count > 0u) {
-      packets += SP_LEAF_PACKETS(node.count);
+    if (node_count > 0u) {
+      packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) {
         best.t = tmax;
         best.triangle = SP_INVALID;
         best.cut_short = 1u;
         return best;
       }
-      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
-        BvhTriangle tri = bvh_triangles[i];
-        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+      for (uint i = node_first; i < node_first + node_count; ++i) {
+        float t = sp_intersect_triangle(q, SP_TRIANGLE_V0(i), SP_TRIANGLE_V1(i), SP_TRIANGLE_V2(i));
         // t == SP_FAR is the triangle test's "miss", whatever tmax is.
-        if (t < SP_FAR && t > q.tmin && t <= q.tmax && sp_better_hit(t, tri.scene_index, best.t, best_scene)) {
+        if (t < SP_FAR && t > q.tmin && t <= q.tmax &&
+            sp_better_hit(t, SP_TRIANGLE_SCENE_INDEX(i), best.t, best_scene)) {
           best.t = t;
           best.triangle = i;
-          best_scene = tri.scene_index;
+          best_scene = SP_TRIANGLE_SCENE_INDEX(i);
         }
       }
     } else {
-      uint left = node.left_or_first;
-      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, best.t);
-      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, best.t);
+      uint left = node_first;
+      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), best.t);
+      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), best.t);
       if (t_left != SP_FAR || t_right != SP_FAR) {
         if (t_left == SP_FAR) {
           node_index = left + 1u;
+          node_count = SP_NODE_COUNT(left + 1u);
+          node_first = SP_NODE_FIRST(left + 1u);
         } else if (t_right == SP_FAR) {
           node_index = left;
+          node_count = SP_NODE_COUNT(left);
+          node_first = SP_NODE_FIRST(left);
         } else {
           // Visit the nearer child first; the farther one waits on the stack.
           bool left_first = t_left <= t_right;
           node_index = left_first ? left : left + 1u;
+          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
           stack[stack_size] = left_first ? left + 1u : left;
           stack_entry[stack_size] = left_first ? t_right : t_left;
           stack_size += 1u;
@@ -216,6 +254,8 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
       found = sp_box_still_reached(stack_entry[stack_size], best.t);
     }
     if (!found) break;
+    node_count = SP_NODE_COUNT(node_index);
+    node_first = SP_NODE_FIRST(node_index);
   }
   return best;
 }
@@ -233,30 +273,36 @@ SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float 
   uint stack[SP_BVH_MAX_DEPTH];
   uint stack_size = 0u;
   uint node_index = 0u;
+  uint node_count = SP_NODE_COUNT(0u);
+  uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;
-  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, tmax) == SP_FAR) return false;
+  if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), tmax) == SP_FAR) return false;
   for (;;) {
-    BvhNode node = bvh_nodes[node_index];
-    if (node.count > 0u) {
-      packets += SP_LEAF_PACKETS(node.count);
+    if (node_count > 0u) {
+      packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) return true;
-      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
-        BvhTriangle tri = bvh_triangles[i];
-        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+      for (uint i = node_first; i < node_first + node_count; ++i) {
+        float t = sp_intersect_triangle(q, SP_TRIANGLE_V0(i), SP_TRIANGLE_V1(i), SP_TRIANGLE_V2(i));
         if (t < SP_FAR && t > q.tmin && t <= q.tmax) return true;
       }
     } else {
-      uint left = node.left_or_first;
-      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, tmax);
-      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, tmax);
+      uint left = node_first;
+      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), tmax);
+      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), tmax);
       if (t_left != SP_FAR || t_right != SP_FAR) {
         if (t_left == SP_FAR) {
           node_index = left + 1u;
+          node_count = SP_NODE_COUNT(left + 1u);
+          node_first = SP_NODE_FIRST(left + 1u);
         } else if (t_right == SP_FAR) {
           node_index = left;
+          node_count = SP_NODE_COUNT(left);
+          node_first = SP_NODE_FIRST(left);
         } else {
           bool left_first = t_left <= t_right;
           node_index = left_first ? left : left + 1u;
+          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
           stack[stack_size] = left_first ? left + 1u : left;
           stack_size += 1u;
         }
@@ -266,6 +312,8 @@ SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float 
     if (stack_size == 0u) break;
     stack_size -= 1u;
     node_index = stack[stack_size];
+    node_count = SP_NODE_COUNT(node_index);
+    node_first = SP_NODE_FIRST(node_index);
   }
   return false;
 }
@@ -335,36 +383,42 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
   float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
   uint node_index = 0u;
+  uint node_count = SP_NODE_COUNT(0u);
+  uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
-  if (sp_intersect_box(q, bvh_nodes[0].bmin, bvh_nodes[0].bmax, tmax) == SP_FAR) return;
+  if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), tmax) == SP_FAR) return;
 
   for (;;) {
-    BvhNode node = bvh_nodes[node_index];
-    if (node.count > 0u) {
-      packets += SP_LEAF_PACKETS(node.count);
+    if (node_count > 0u) {
+      packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) {
         list.cut_short = 1u;
         return;
       }
-      for (uint i = node.left_or_first; i < node.left_or_first + node.count; ++i) {
-        BvhTriangle tri = bvh_triangles[i];
-        float t = sp_intersect_triangle(q, tri.v0, tri.v1, tri.v2);
+      for (uint i = node_first; i < node_first + node_count; ++i) {
+        float t = sp_intersect_triangle(q, SP_TRIANGLE_V0(i), SP_TRIANGLE_V1(i), SP_TRIANGLE_V2(i));
         if (t < SP_FAR && t > q.tmin && t <= q.tmax)
-          sp_hit_list_offer(list, t, i, tri.solid * 4u + sp_crossing(tri.normal, q.dir));
+          sp_hit_list_offer(list, t, i, SP_TRIANGLE_SOLID(i) * 4u + sp_crossing(SP_TRIANGLE_NORMAL(i), q.dir));
       }
     } else {
-      uint left = node.left_or_first;
+      uint left = node_first;
       float limit = sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax);
-      float t_left = sp_intersect_box(q, bvh_nodes[left].bmin, bvh_nodes[left].bmax, limit);
-      float t_right = sp_intersect_box(q, bvh_nodes[left + 1u].bmin, bvh_nodes[left + 1u].bmax, limit);
+      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), limit);
+      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), limit);
       if (t_left != SP_FAR || t_right != SP_FAR) {
         if (t_left == SP_FAR) {
           node_index = left + 1u;
+          node_count = SP_NODE_COUNT(left + 1u);
+          node_first = SP_NODE_FIRST(left + 1u);
         } else if (t_right == SP_FAR) {
           node_index = left;
+          node_count = SP_NODE_COUNT(left);
+          node_first = SP_NODE_FIRST(left);
         } else {
           bool left_first = t_left <= t_right;
           node_index = left_first ? left : left + 1u;
+          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
           stack[stack_size] = left_first ? left + 1u : left;
           stack_entry[stack_size] = left_first ? t_right : t_left;
           stack_size += 1u;
@@ -380,6 +434,8 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
                                    sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax));
     }
     if (!found) break;
+    node_count = SP_NODE_COUNT(node_index);
+    node_first = SP_NODE_FIRST(node_index);
   }
 }
 

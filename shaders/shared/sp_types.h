@@ -20,6 +20,9 @@
 // The most spots a step may have for the connect pass to admit them itself
 // (shaders/admission_passes.glsl; gpu::inline_admission_max).
 #define SP_SPEC_ADMIT_INLINE_MAX 2
+// Whether the walks read the tree from its uniform texel buffers (1) or
+// its storage buffers (0): gpu::bvh_texels_usable.
+#define SP_SPEC_BVH_TEXELS 3
 // Surface offset (metres) applied after reflections and exits, so a ray
 // never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

@@ -10,6 +10,7 @@
 #include "connect.comp.spv.h"
 #include "emit.comp.spv.h"
 #include "gpu/gpu_layout_checks.h"
+#include "vk/objects.h"
 #include "sim/world_geometry.h"
 #include "sp_admission.h"
 #include "sp_draw_types.h"
@@ -25,6 +26,7 @@ namespace {
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kTransfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kTexels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
 template <class T>
 VkDeviceSize bytes(std::uint64_t count) {
@@ -138,6 +140,37 @@ std::uint32_t inline_admission_max(const vk::Context& context) {
                                                                         : SP_WORKGROUP_SIZE;
 }
 
+namespace {
+
+// RGBA32UI texels of a node and of a triangle (BvhNode, BvhTriangle).
+constexpr std::size_t kTexelBytes = 16;
+constexpr std::size_t kNodeTexels = sizeof(shader::BvhNode) / kTexelBytes;
+constexpr std::size_t kTriangleTexels = sizeof(shader::BvhTriangle) / kTexelBytes;
+static_assert(sizeof(shader::BvhNode) % kTexelBytes == 0 && sizeof(shader::BvhTriangle) % kTexelBytes == 0);
+
+std::size_t texel_limit(const vk::Context& context) {
+  std::size_t limit = context.properties().limits.maxTexelBufferElements;
+  if (context.requested_max_texel_buffer_elements() != 0)
+    limit = std::min<std::size_t>(limit, context.requested_max_texel_buffer_elements());
+  // texelFetch takes an int.
+  return std::min<std::size_t>(limit, std::numeric_limits<std::int32_t>::max());
+}
+
+// A view of `buffer` as texels: all of it when `whole`, else as many texels
+// as the limit allows (a view the kernels never read, for the binding).
+vk::UniqueBufferView texel_view(const vk::Context& context, const vk::Buffer& buffer, bool whole, const char* name) {
+  const VkDeviceSize range =
+      whole ? VK_WHOLE_SIZE : std::min<VkDeviceSize>(buffer.size(), texel_limit(context) * kTexelBytes);
+  return vk::create_buffer_view(context, buffer.get(), VK_FORMAT_R32G32B32A32_UINT, 0, range, name);
+}
+
+}  // namespace
+
+bool bvh_texels_usable(const vk::Context& context, std::size_t nodes, std::size_t triangles) {
+  const std::size_t limit = texel_limit(context);
+  return nodes <= limit / kNodeTexels && triangles <= limit / kTriangleTexels;
+}
+
 ConfigSizes config_sizes(const vk::Context& context, const Config& config, std::uint32_t workgroup_size) {
   ConfigSizes sizes;
   sizes.max_rays = std::max<std::uint32_t>(1, config.ray_budget);
@@ -180,10 +213,13 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                                                  : std::max(world.geometry->bvh.nodes.size(), 2 * triangle_count - 1));
   source_capacity = sources;
   const std::vector<shader::LayerAcoustics> layer_table = make_layer_table(world);
-  nodes = vk::Buffer(context, bytes<shader::BvhNode>(node_capacity), kStorage | kTransfer, vk::MemoryUsage::DeviceLocal,
-                     "bvh nodes");
-  triangles = vk::Buffer(context, bytes<shader::BvhTriangle>(triangle_count), kStorage | kTransfer,
+  nodes = vk::Buffer(context, bytes<shader::BvhNode>(node_capacity), kStorage | kTexels | kTransfer,
+                     vk::MemoryUsage::DeviceLocal, "bvh nodes");
+  triangles = vk::Buffer(context, bytes<shader::BvhTriangle>(triangle_count), kStorage | kTexels | kTransfer,
                          vk::MemoryUsage::DeviceLocal, "bvh triangles");
+  bvh_texels = bvh_texels_usable(context, node_capacity, triangle_count);
+  node_texels = texel_view(context, nodes, bvh_texels, "bvh node texels");
+  triangle_texels = texel_view(context, triangles, bvh_texels, "bvh triangle texels");
   // Diffraction off: one zero entry, which the kernels never read.
   const std::vector<shader::TriangleEdges> edge_table =
       world.geometry->bvh.edges.empty() ? std::vector<shader::TriangleEdges>(1) : world.geometry->bvh.edges;
@@ -222,16 +258,20 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   staging.add(guide, empty_guides);
   staging.fill(context, *this);
 
-  bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set");
+  bindings = vk::StorageBindings(context, SP_BINDING_COUNT, "soundpaint set", SP_TEXEL_BINDING_COUNT);
   const vk::Buffer* bound[SP_BINDING_COUNT] = {&nodes,    &triangles, &layers,  &step_input, &rays,
                                                &hits,     &queues,    &control, &ring,       &capture,
                                                &counters, &admission, &edges,   &guide,      &connect_queue};
   for (std::uint32_t b = 0; b < SP_BINDING_COUNT; ++b) bindings.bind(context, b, *bound[b]);
+  bindings.bind(context, SP_BINDING_NODE_TEXELS, node_texels.get());
+  bindings.bind(context, SP_BINDING_TRIANGLE_TEXELS, triangle_texels.get());
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
-  static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1 && SP_SPEC_ADMIT_INLINE_MAX == 2,
+  static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1 && SP_SPEC_ADMIT_INLINE_MAX == 2 &&
+                    SP_SPEC_BVH_TEXELS == 3,
                 "the kernels' specialization constants, in order");
-  const std::uint32_t spec[] = {workgroup_size, workgroup_size, inline_admission_max(context)};
+  const std::uint32_t spec[] = {workgroup_size, workgroup_size, inline_admission_max(context),
+                                bvh_texels ? VK_TRUE : VK_FALSE};
   auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
     return vk::ComputePipeline(context, spirv, bindings.layout(), push, name, spec);
   };

@@ -77,12 +77,13 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
     detail::SoundSceneBackend::plan(scene, first_step + i, plan_);
     record_step_input(cmd, scene.world(), first_step + i);
     // RAW: uploads (the step input; BVH and initial contents on the first
-    // step) are visible to the kernels.
+    // step, moved parts on any) are visible to the kernels, the tree's
+    // texel reads included.
     ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                           VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
+                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
     record_step_dispatches(cmd, resources_, static_cast<std::uint32_t>(plan_.sources.size()), options.stages,
                            options.counts);
   }

@@ -1,6 +1,9 @@
 // Runs a simulator for some steps and keeps what the tests look at.
 #pragma once
 
+#include <algorithm>
+#include <cstring>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -25,6 +28,21 @@ inline Recorded run_steps(Simulator& sim, std::uint64_t steps) {
   out.live = sim.live_indicators().value();
   out.stats = sim.stats().value();
   return out;
+}
+
+// Indicators in (step, iteration, ray, kind) order: a GPU step writes its
+// own in the order its subgroups finish.
+inline void sort_indicators(std::vector<Indicator>& indicators) {
+  std::sort(indicators.begin(), indicators.end(), [](const Indicator& a, const Indicator& b) {
+    return std::tie(a.step, a.iteration, a.ray_index, a.kind) < std::tie(b.step, b.iteration, b.ray_index, b.kind);
+  });
+}
+
+// The same indicators, byte for byte, in the same order.
+inline void expect_same_bytes(const std::vector<Indicator>& got, const std::vector<Indicator>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i)
+    ASSERT_EQ(std::memcmp(&got[i], &want[i], sizeof(Indicator)), 0) << "indicator " << i;
 }
 
 }  // namespace sp::test
