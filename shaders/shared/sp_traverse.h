@@ -29,7 +29,9 @@
 // node's children are tested before it is entered, and the test reads the
 // two texels that also hold the child's first index and count: the walks
 // keep those of the node they enter, and read them again only for a node
-// popped from the stack.
+// popped from the stack. They read the entered child's two fields as
+// `enter_left ? FIELD(left) : FIELD(left + 1u)`, not at a chosen index, so
+// that the fetches are the box tests' own.
 #ifdef __cplusplus
 #define SP_NODE_MIN(i) bvh_nodes[i].bmin
 #define SP_NODE_MAX(i) bvh_nodes[i].bmax
@@ -179,6 +181,13 @@ SP_INLINE bool sp_better_hit(float t, uint scene_index, float best_t, uint best_
   return t < best_t || (t == best_t && scene_index < best_scene);
 }
 
+// Which child a walk enters once its box tests gave the entry distances
+// t_left and t_right, at least one of them reached (< SP_FAR): the nearer,
+// the left one on a tie.
+SP_INLINE bool sp_enter_left(float t_left, float t_right) {
+  return t_right == SP_FAR || (t_left != SP_FAR && t_left <= t_right);
+}
+
 // Closest hit with distance in (tmin, tmax]. Two-sided triangles. A walk
 // whose next leaf would take it past SP_MAX_CAST_PACKETS ends there with no
 // hit and cut_short set.
@@ -193,7 +202,6 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   uint stack[SP_BVH_MAX_DEPTH];
   float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
-  uint node_index = 0u;
   uint node_count = SP_NODE_COUNT(0u);
   uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
@@ -223,24 +231,16 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
       float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), best.t);
       float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), best.t);
       if (t_left != SP_FAR || t_right != SP_FAR) {
-        if (t_left == SP_FAR) {
-          node_index = left + 1u;
-          node_count = SP_NODE_COUNT(left + 1u);
-          node_first = SP_NODE_FIRST(left + 1u);
-        } else if (t_right == SP_FAR) {
-          node_index = left;
-          node_count = SP_NODE_COUNT(left);
-          node_first = SP_NODE_FIRST(left);
-        } else {
-          // Visit the nearer child first; the farther one waits on the stack.
-          bool left_first = t_left <= t_right;
-          node_index = left_first ? left : left + 1u;
-          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-          stack[stack_size] = left_first ? left + 1u : left;
-          stack_entry[stack_size] = left_first ? t_right : t_left;
+        // Enter the nearer child reached; the farther, if reached too,
+        // waits on the stack.
+        bool enter_left = sp_enter_left(t_left, t_right);
+        if (t_left != SP_FAR && t_right != SP_FAR) {
+          stack[stack_size] = enter_left ? left + 1u : left;
+          stack_entry[stack_size] = enter_left ? t_right : t_left;
           stack_size += 1u;
         }
+        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
         continue;
       }
     }
@@ -248,14 +248,15 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
     // test again with the smaller far limit, without reading the box
     // (sp_box_still_reached).
     bool found = false;
+    uint popped = 0u;
     while (stack_size > 0u && !found) {
       stack_size -= 1u;
-      node_index = stack[stack_size];
+      popped = stack[stack_size];
       found = sp_box_still_reached(stack_entry[stack_size], best.t);
     }
     if (!found) break;
-    node_count = SP_NODE_COUNT(node_index);
-    node_first = SP_NODE_FIRST(node_index);
+    node_count = SP_NODE_COUNT(popped);
+    node_first = SP_NODE_FIRST(popped);
   }
   return best;
 }
@@ -272,7 +273,6 @@ SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float 
   RayQuery q = sp_make_query(origin, dir, tmin, tmax);
   uint stack[SP_BVH_MAX_DEPTH];
   uint stack_size = 0u;
-  uint node_index = 0u;
   uint node_count = SP_NODE_COUNT(0u);
   uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;
@@ -290,30 +290,21 @@ SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float 
       float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), tmax);
       float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), tmax);
       if (t_left != SP_FAR || t_right != SP_FAR) {
-        if (t_left == SP_FAR) {
-          node_index = left + 1u;
-          node_count = SP_NODE_COUNT(left + 1u);
-          node_first = SP_NODE_FIRST(left + 1u);
-        } else if (t_right == SP_FAR) {
-          node_index = left;
-          node_count = SP_NODE_COUNT(left);
-          node_first = SP_NODE_FIRST(left);
-        } else {
-          bool left_first = t_left <= t_right;
-          node_index = left_first ? left : left + 1u;
-          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-          stack[stack_size] = left_first ? left + 1u : left;
+        bool enter_left = sp_enter_left(t_left, t_right);
+        if (t_left != SP_FAR && t_right != SP_FAR) {
+          stack[stack_size] = enter_left ? left + 1u : left;
           stack_size += 1u;
         }
+        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
         continue;
       }
     }
     if (stack_size == 0u) break;
     stack_size -= 1u;
-    node_index = stack[stack_size];
-    node_count = SP_NODE_COUNT(node_index);
-    node_first = SP_NODE_FIRST(node_index);
+    uint popped = stack[stack_size];
+    node_count = SP_NODE_COUNT(popped);
+    node_first = SP_NODE_FIRST(popped);
   }
   return false;
 }
@@ -382,7 +373,6 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
   uint stack[SP_BVH_MAX_DEPTH];
   float stack_entry[SP_BVH_MAX_DEPTH];  // each waiting node's entry distance
   uint stack_size = 0u;
-  uint node_index = 0u;
   uint node_count = SP_NODE_COUNT(0u);
   uint node_first = SP_NODE_FIRST(0u);
   uint packets = 0u;  // work done: SP_MAX_CAST_PACKETS bounds it
@@ -406,36 +396,28 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
       float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), limit);
       float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), limit);
       if (t_left != SP_FAR || t_right != SP_FAR) {
-        if (t_left == SP_FAR) {
-          node_index = left + 1u;
-          node_count = SP_NODE_COUNT(left + 1u);
-          node_first = SP_NODE_FIRST(left + 1u);
-        } else if (t_right == SP_FAR) {
-          node_index = left;
-          node_count = SP_NODE_COUNT(left);
-          node_first = SP_NODE_FIRST(left);
-        } else {
-          bool left_first = t_left <= t_right;
-          node_index = left_first ? left : left + 1u;
-          node_count = left_first ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-          node_first = left_first ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-          stack[stack_size] = left_first ? left + 1u : left;
-          stack_entry[stack_size] = left_first ? t_right : t_left;
+        bool enter_left = sp_enter_left(t_left, t_right);
+        if (t_left != SP_FAR && t_right != SP_FAR) {
+          stack[stack_size] = enter_left ? left + 1u : left;
+          stack_entry[stack_size] = enter_left ? t_right : t_left;
           stack_size += 1u;
         }
+        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
         continue;
       }
     }
     bool found = false;
+    uint popped = 0u;
     while (stack_size > 0u && !found) {
       stack_size -= 1u;
-      node_index = stack[stack_size];
+      popped = stack[stack_size];
       found = sp_box_still_reached(stack_entry[stack_size],
                                    sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax));
     }
     if (!found) break;
-    node_count = SP_NODE_COUNT(node_index);
-    node_first = SP_NODE_FIRST(node_index);
+    node_count = SP_NODE_COUNT(popped);
+    node_first = SP_NODE_FIRST(popped);
   }
 }
 
