@@ -30,7 +30,7 @@ std::unique_ptr<vk::Context> context_with_texel_limit(std::uint32_t max_texels) 
   vk::ContextSettings settings;
   settings.validation = true;
   settings.device_name = test::GpuEnvironment::context()->properties().deviceName;
-  settings.max_texel_buffer_elements = max_texels;
+  settings.kernels.max_texel_buffer_elements = max_texels;
   return vk::Context::create(settings).value();
 }
 

@@ -73,9 +73,9 @@ WidthRun run_with_the_other_admission() {
   vk::ContextSettings settings;
   settings.validation = true;
   settings.device_name = shared.properties().deviceName;
-  settings.kernel_workgroup_size = SP_WORKGROUP_SIZE;
+  settings.kernels.workgroup_size = SP_WORKGROUP_SIZE;
   const bool dispatches_by_default = gpu::inline_admission_max(shared) == 64u;
-  settings.inline_admission_max = dispatches_by_default ? std::numeric_limits<std::uint32_t>::max() : 64u;
+  settings.kernels.inline_admission_max = dispatches_by_default ? std::numeric_limits<std::uint32_t>::max() : 64u;
   std::unique_ptr<vk::Context> context = vk::Context::create(settings).value();
   auto sim = gpu::create_simulator(make_world(test::closed_room(), room_config(8)).value(), *context).value();
   WidthRun out = run_steps(*sim);

@@ -114,7 +114,7 @@ const SizedBuffer kSizedBuffers[kSizedBufferCount] = {
 
 std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t max_rays) {
   const std::uint32_t subgroup = std::max<std::uint32_t>(1, context.subgroup_size());
-  const std::uint32_t requested = context.requested_kernel_workgroup_size();
+  const std::uint32_t requested = context.requested_kernels().workgroup_size;
   const VkPhysicalDeviceLimits& limits = context.properties().limits;
   if (requested != 0) {
     const std::uint32_t most = std::min(limits.maxComputeWorkGroupSize[0], limits.maxComputeWorkGroupInvocations);
@@ -135,7 +135,8 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
 }
 
 std::uint32_t inline_admission_max(const vk::Context& context) {
-  if (context.requested_inline_admission_max() != 0) return context.requested_inline_admission_max();
+  const std::uint32_t requested = context.requested_kernels().inline_admission_max;
+  if (requested != 0) return requested;
   return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? std::numeric_limits<std::uint32_t>::max()
                                                                         : SP_WORKGROUP_SIZE;
 }
@@ -150,8 +151,8 @@ static_assert(sizeof(shader::BvhNode) % kTexelBytes == 0 && sizeof(shader::BvhTr
 
 std::size_t texel_limit(const vk::Context& context) {
   std::size_t limit = context.properties().limits.maxTexelBufferElements;
-  if (context.requested_max_texel_buffer_elements() != 0)
-    limit = std::min<std::size_t>(limit, context.requested_max_texel_buffer_elements());
+  const std::uint32_t requested = context.requested_kernels().max_texel_buffer_elements;
+  if (requested != 0) limit = std::min<std::size_t>(limit, requested);
   // texelFetch takes an int.
   return std::min<std::size_t>(limit, std::numeric_limits<std::int32_t>::max());
 }
@@ -217,7 +218,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                      vk::MemoryUsage::DeviceLocal, "bvh nodes");
   triangles = vk::Buffer(context, bytes<shader::BvhTriangle>(triangle_count), kStorage | kTexels | kTransfer,
                          vk::MemoryUsage::DeviceLocal, "bvh triangles");
-  bvh_texels = bvh_texels_usable(context, node_capacity, triangle_count);
+  const bool bvh_texels = bvh_texels_usable(context, node_capacity, triangle_count);
   node_texels = texel_view(context, nodes, bvh_texels, "bvh node texels");
   triangle_texels = texel_view(context, triangles, bvh_texels, "bvh triangle texels");
   // Diffraction off: one zero entry, which the kernels never read.

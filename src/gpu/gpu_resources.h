@@ -64,10 +64,11 @@ std::uint32_t inline_admission_max(const vk::Context& context);
 
 // Whether the walks can read a tree of `nodes` nodes over `triangles`
 // triangles from uniform texel buffers (two RGBA32UI texels a node, four a
-// triangle): when each fits the device's maxTexelBufferElements (or
-// ContextSettings' lower max_texel_buffer_elements) and a texel index fits
-// GLSL's int. RGBA32UI uniform texel buffers are mandatory in Vulkan, so the
-// format needs no check. Otherwise the kernels read the storage buffers.
+// triangle): when each fits the device's maxTexelBufferElements (or the
+// lower ContextSettings::kernels.max_texel_buffer_elements) and a texel
+// index fits GLSL's int. RGBA32UI uniform texel buffers are mandatory in
+// Vulkan, so the format needs no check. Otherwise the kernels read the
+// storage buffers.
 bool bvh_texels_usable(const vk::Context& context, std::size_t nodes, std::size_t triangles);
 
 // Throws sp::Exception(LimitExceeded) when ray_budget needs more
@@ -113,7 +114,6 @@ struct GpuResources {
   std::size_t edge_count = 0;
   std::uint32_t node_capacity = 0;    // BVH nodes the buffer holds (a rebuild may need more than the first build)
   std::uint32_t source_capacity = 0;  // entries of the step input's source table
-  bool bvh_texels = false;            // the walks read node_texels and triangle_texels (bvh_texels_usable)
 
   ConfigSizes sizes() const { return {max_rays, iterations, capture_capacity, ring_capacity}; }
 
@@ -128,8 +128,9 @@ struct GpuResources {
   vk::Buffer guide;                     // each source id's guide (sp_guide.h)
   vk::Buffer connect_queue;             // capture slots of the step's spots worth a cast to the listener
   vk::Buffer control_readback;          // copy of control after each step
-  // nodes and triangles as RGBA32UI texels: the whole buffers where
-  // bvh_texels, else their first texels only (bound, never read).
+  // nodes and triangles as RGBA32UI texels: the whole buffers where the
+  // walks read them (bvh_texels_usable), else their first texels only
+  // (bound, never read).
   vk::UniqueBufferView node_texels, triangle_texels;
 
   // Initial contents, copied by the first recorded step: where each part

@@ -312,7 +312,7 @@ Result<std::unique_ptr<Simulator>> create_gpu_simulator(World world, const GpuSe
         vk::ContextSettings context_settings;
         context_settings.validation = settings.validation;
         context_settings.device_name = settings.device_name;
-        context_settings.kernel_workgroup_size = settings.workgroup_size;
+        context_settings.kernels.workgroup_size = settings.workgroup_size;
         std::unique_ptr<vk::Context> context = vk::Context::create(context_settings).value();
         if (!settings.allow_cpu_device && context->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
           throw Exception(ErrorCode::Vulkan, "the only Vulkan device is a CPU device (" +

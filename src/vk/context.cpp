@@ -216,9 +216,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextSettings& settings
         // Built step by step; if a step throws, the destructor releases the
         // steps already done (it skips null handles).
         std::unique_ptr<Context> context(new Context());
-        context->requested_kernel_workgroup_size_ = settings.kernel_workgroup_size;
-        context->requested_inline_admission_max_ = settings.inline_admission_max;
-        context->requested_max_texel_buffer_elements_ = settings.max_texel_buffer_elements;
+        context->requested_kernels_ = settings.kernels;
         const bool validation = settings.validation || env_is("SOUNDPAINT_VALIDATION", "1");
         if (validation) context->messages_ = std::make_unique<Messages>();
 

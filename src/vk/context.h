@@ -20,6 +20,20 @@ struct HostVulkan;
 
 namespace sp::vk {
 
+// How the simulation's kernels are set up on a context, where a caller asks
+// for something other than the device's choice (a 0 field).
+struct KernelSettings {
+  // Threads per workgroup (gpu::kernel_workgroup_size).
+  std::uint32_t workgroup_size = 0;
+  // The most spots a step may have for the connect pass to admit them
+  // itself (gpu::inline_admission_max).
+  std::uint32_t inline_admission_max = 0;
+  // The most texels the walks' tree may take in one uniform texel buffer,
+  // below the device's maxTexelBufferElements; a tree needing more is read
+  // from its storage buffers (gpu::bvh_texels_usable).
+  std::uint32_t max_texel_buffer_elements = 0;
+};
+
 struct ContextSettings {
   // Enables VK_LAYER_KHRONOS_validation and a debug messenger that counts
   // every warning and error it reports. Also on when SOUNDPAINT_VALIDATION=1.
@@ -32,16 +46,7 @@ struct ContextSettings {
   // missing ones are errors naming them.
   std::vector<std::string> instance_extensions;
   std::vector<std::string> device_extensions;
-  // Threads per workgroup of the simulation's kernels; 0: the device's
-  // choice (gpu::kernel_workgroup_size).
-  std::uint32_t kernel_workgroup_size = 0;
-  // The most spots a step may have for the connect pass to admit them
-  // itself; 0: the device's choice (gpu::inline_admission_max).
-  std::uint32_t inline_admission_max = 0;
-  // The most texels the walks' tree may take in one uniform texel buffer,
-  // below the device's maxTexelBufferElements; 0: the device's limit. A tree
-  // needing more is read from its storage buffers (gpu::bvh_texels_usable).
-  std::uint32_t max_texel_buffer_elements = 0;
+  KernelSettings kernels;
 };
 
 // What the compute kernels need of the device's subgroups
@@ -83,12 +88,8 @@ class Context {
   std::uint32_t queue_family() const { return queue_family_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::uint32_t subgroup_size() const { return subgroup_size_; }
-  // ContextSettings::kernel_workgroup_size (0 when borrowed).
-  std::uint32_t requested_kernel_workgroup_size() const { return requested_kernel_workgroup_size_; }
-  // ContextSettings::inline_admission_max (0 when borrowed).
-  std::uint32_t requested_inline_admission_max() const { return requested_inline_admission_max_; }
-  // ContextSettings::max_texel_buffer_elements (0 when borrowed).
-  std::uint32_t requested_max_texel_buffer_elements() const { return requested_max_texel_buffer_elements_; }
+  // ContextSettings::kernels (all 0 when borrowed).
+  const KernelSettings& requested_kernels() const { return requested_kernels_; }
 
   // "llvmpipe (LLVM 15.0.6, 256 bits), driver Mesa 22.3.6" style text.
   std::string description() const;
@@ -141,9 +142,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_properties_{};
   std::string driver_info_;
   std::uint32_t subgroup_size_ = 1;
-  std::uint32_t requested_kernel_workgroup_size_ = 0;
-  std::uint32_t requested_inline_admission_max_ = 0;
-  std::uint32_t requested_max_texel_buffer_elements_ = 0;
+  KernelSettings requested_kernels_;
   UniqueCommandPool one_time_pool_;  // owned contexts only
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
   bool borrowed_ = false;
