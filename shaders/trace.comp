@@ -1,7 +1,8 @@
 #version 460
 // Stage (b)/(d), Active rays: the forward cast, one closest-hit query per
-// Active ray of the queue (its front, QueueArgs). trace_matter.comp serves
-// the resolving rays of the same iteration.
+// Active ray of the queue (its front, QueueArgs), from the second wavefront
+// iteration on (emit.comp casts the rays it emits). trace_matter.comp
+// serves the resolving rays of the same iteration.
 #extension GL_GOOGLE_include_directive : require
 #include "gpu_bindings.glsl"
 #include "sp_traverse.h"

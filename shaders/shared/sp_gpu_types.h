@@ -74,11 +74,38 @@ struct Control {
   uint draw_instance_count;
   uint draw_first_vertex;
   uint draw_first_instance;
+  // The step's own counts and dispatch arguments, from queues up to
+  // ring_head: the host writes what they hold before a step's first kernel
+  // (gpu::step_start_control), so that no kernel has to reset them first.
   QueueArgs queues[2];
-  uint ring_head;        // next ring slot at the start of a step
-  uint ring_filled;      // slots holding an indicator, <= capacity
-  uint step_indicators;  // indicators the current step created (its capture list)
-  uint step_casts;       // casts of the current step
+  uint step_indicators;   // indicators the current step created (its capture list)
+  uint step_casts;        // casts of the current step
+  uint step_cut_short;    // casts that ended at SP_MAX_CAST_PACKETS
+  uint step_connections;  // casts from spots to the listener (sp_connect.h)
+  // The connect kernel's dispatch over the step's spots worth casting (the
+  // connect queue, which resolve fills), and their count.
+  uint connect_group_count_x;
+  uint connect_group_count_y;
+  uint connect_group_count_z;
+  uint connect_count;
+  // Admission of the step's indicators to the ring (sp_ring.h): a dispatch
+  // over the capture list, and how many were admitted
+  // (the plan lives in the admission buffer, sp_admission.h).
+  uint admit_group_count_x;
+  uint admit_group_count_y;
+  uint admit_group_count_z;
+  uint admit_count;
+  uint tiebreak_count;  // indicators in a class's overflowing bin, listed for the tie-break
+  // Invocations of the running pass that have finished: the last subgroup
+  // does what a dispatch of one thread after it did (last_subgroup in
+  // gpu_bindings.glsl). Resolve's counts per iteration and resets itself.
+  uint resolve_done;
+  uint connect_done;
+  uint tiebreak_done;
+  uint copy_done;
+  // The run's state, kept from step to step.
+  uint ring_head;    // next ring slot at the start of a step
+  uint ring_filled;  // slots holding an indicator, <= capacity
   uint total_indicators_lo;
   uint total_indicators_hi;
   uint total_casts_lo;
@@ -87,39 +114,13 @@ struct Control {
   uint steps;
   uint total_rays_lo;
   uint total_rays_hi;
-  // Admission of the step's indicators to the ring (sp_ring.h): a dispatch
-  // over the capture list, and how many were admitted
-  // (the plan lives in the admission buffer, sp_admission.h).
-  uint admit_group_count_x;
-  uint admit_group_count_y;
-  uint admit_group_count_z;
-  uint admit_count;
-  // Casts that ended at SP_MAX_CAST_PACKETS: this step's, and the run's.
-  uint step_cut_short;
   uint total_cut_short_lo;
   uint total_cut_short_hi;
-  // Workgroups of the running dispatch that have finished: the last one
-  // does what a dispatch of one thread after it did (last_workgroup in
-  // gpu_bindings.glsl). Resolve's counts per iteration and resets itself;
-  // the others are reset by emit.
-  uint resolve_done;
-  // Casts from spots to the listener (sp_connect.h): this step's, and the run's.
-  uint step_connections;
   uint total_connections_lo;
   uint total_connections_hi;
-  uint connect_done;
-  // The connect kernel's dispatch over the step's spots worth casting (the
-  // connect queue, which resolve fills), and their count.
-  uint connect_group_count_x;
-  uint connect_group_count_y;
-  uint connect_group_count_z;
-  uint connect_count;
-  uint tiebreak_done;
-  uint copy_done;
-  uint tiebreak_count;  // indicators in a class's overflowing bin, listed for the tie-break
   uint pad0;
 };
-SP_CHECK_LAYOUT(sizeof(Control) == 240 && offsetof(Control, connect_group_count_x) == 208 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, ring_head) == 112 && offsetof(Control, admit_group_count_x) == 160);
+SP_CHECK_LAYOUT(sizeof(Control) == 240 && offsetof(Control, draw_vertex_count) == 0 && offsetof(Control, queues) == 16 && offsetof(Control, connect_group_count_x) == 128 && offsetof(Control, admit_group_count_x) == 144 && offsetof(Control, ring_head) == 180);
 
 // Written by the host before each step's submit.
 struct StepInput {

@@ -58,8 +58,9 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
   const bool first = !uploaded_;
   if (first) record_initial_uploads(cmd);
   const BvhChanges changes = detail::SoundSceneBackend::update_geometry(scene);
-  if (first && !(changes.nodes.empty() && changes.triangles.empty() && changes.edges.empty())) {
-    // WAW: the rest pose's copy lands before the moved parts overwrite it.
+  if (first) {
+    // WAW: the initial contents land before the moved parts (the rest
+    // pose's) and the step start overwrite them.
     ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -68,24 +69,26 @@ void StepEngine::record(VkCommandBuffer cmd, SoundScene& scene, std::uint64_t fi
 
   for (std::uint32_t i = 0; i < count; ++i) {
     if (i > 0) {
-      // WAR: the previous step's kernels have read the step input before
-      // this step's inputs overwrite it.
+      // WAR and WAW: the previous step's kernels are done with the step
+      // input, the control block, the counters and the admission buffer
+      // before this step's transfers write them.
       ++counts.barriers;
-      vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+      vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     }
     detail::SoundSceneBackend::plan(scene, first_step + i, plan_);
     record_step_input(cmd, scene.world(), first_step + i);
-    // RAW: uploads (the step input; BVH and initial contents on the first
-    // step, moved parts on any) are visible to the kernels, the tree's
-    // texel reads included.
+    record_step_start(cmd, resources_, plan_.total_rays);
+    // RAW: uploads (the step input and start; BVH and initial contents on
+    // the first step, moved parts on any) are visible to the kernels, the
+    // tree's texel reads included.
     ++counts.barriers;
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT |
                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-    record_step_dispatches(cmd, resources_, static_cast<std::uint32_t>(plan_.sources.size()), options.stages,
-                           options.counts);
+    record_step_dispatches(cmd, resources_, plan_.total_rays, options.stages, options.counts);
   }
 
   // RAW: the ring and the draw arguments the admission wrote reach the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "sp_ring.h"
 #include "sp_types.h"
 #include "vk/barriers.h"
 
@@ -16,10 +17,49 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
   vkCmdPushConstants(cmd, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
 }
 
+shader::QueueArgs queue_args(std::uint32_t active, std::uint32_t group_width) {
+  const auto groups = static_cast<std::uint32_t>(workgroups_for(active, group_width));
+  shader::QueueArgs args{};
+  args.group_count_x = groups;
+  args.active_count = active;
+  args.active_groups_x = groups;
+  args.group_count_y = args.group_count_z = args.active_groups_y = args.active_groups_z = 1;
+  args.resolving_groups_y = args.resolving_groups_z = 1;
+  return args;
+}
+
+constexpr std::size_t kStepBegin = offsetof(shader::Control, queues);
+constexpr std::size_t kStepEnd = offsetof(shader::Control, ring_head);
+static_assert(offsetof(shader::Control, copy_done) < kStepEnd &&
+                  offsetof(shader::Control, draw_first_instance) < kStepBegin,
+              "the per-step part of the control block is one range, after the draw arguments");
+
 }  // namespace
 
-void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t /*source_count*/,
-                            StageQueries* stages, RecordCounts* counts) {
+shader::Control step_start_control(std::uint32_t total_rays, std::uint32_t group_width) {
+  shader::Control start{};
+  start.queues[0] = queue_args(total_rays, group_width);
+  start.queues[1] = queue_args(0, group_width);
+  start.connect_group_count_x = start.connect_group_count_y = start.connect_group_count_z = 1;
+  start.admit_group_count_y = start.admit_group_count_z = 1;
+  return start;
+}
+
+void record_step_start(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t total_rays) {
+  const shader::Control start = step_start_control(total_rays, r.workgroup_size);
+  vk::record_update(cmd, r.control, kStepBegin, reinterpret_cast<const std::byte*>(&start) + kStepBegin,
+                    kStepEnd - kStepBegin);
+  if (r.layer_count > 0) {
+    vkCmdFillBuffer(cmd, r.counters.get(), 0,
+                    VkDeviceSize{r.layer_count} * SP_COUNTERS_PER_LAYER * sizeof(std::uint32_t), 0u);
+  }
+  const VkDeviceSize order_words = SP_ORDER_WORDS(VkDeviceSize{r.max_rays}, VkDeviceSize{r.iterations});
+  vkCmdFillBuffer(cmd, r.admission.get(), SP_ORDER_BITMAP * sizeof(std::uint32_t), order_words * sizeof(std::uint32_t),
+                  0u);
+}
+
+void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t total_rays, StageQueries* stages,
+                            RecordCounts* counts) {
   RecordCounts ignored;
   RecordCounts& count = counts != nullptr ? *counts : ignored;
   if (stages != nullptr && stages->next + stage_queries_per_step(r.iterations) > stages->end) stages = nullptr;
@@ -33,30 +73,25 @@ void record_step_dispatches(VkCommandBuffer cmd, const GpuResources& r, std::uin
   VkDescriptorSet set = r.bindings.set();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernels.emit.layout(), 0, 1, &set, 0, nullptr);
 
+  // The first iteration's casts are emit's: its rays are all Active.
   bind(cmd, r, r.kernels.emit, 0, 0);
-  const std::uint32_t emit_threads = std::max(r.max_rays, r.layer_count * SP_COUNTERS_PER_LAYER);
   ++count.dispatches;
-  vkCmdDispatch(cmd, static_cast<std::uint32_t>(workgroups_for(emit_threads, r.workgroup_size)), 1, 1);
+  vkCmdDispatch(cmd, static_cast<std::uint32_t>(workgroups_for(total_rays, r.workgroup_size)), 1, 1);
   stamp(StageKernel::Emit);
-  // Emitted rays, queue 0 and its indirect arguments feed the first trace.
-  ++count.barriers;
-  vk::compute_to_compute(cmd);
 
   for (std::uint32_t it = 0; it < r.iterations; ++it) {
     const std::uint32_t queue_in = it % 2;
     const VkDeviceSize args = offsetof(shader::Control, queues) + queue_in * sizeof(shader::QueueArgs);
-    bind(cmd, r, r.kernels.trace, queue_in, 0);
-    ++count.dispatches;
-    vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, active_groups_x));
-    // The two write the hits of disjoint rays: no barrier between them. No
-    // ray resolves a penetration in the first iteration: every ray there
-    // has just been emitted.
     if (it > 0) {
+      // The two write the hits of disjoint rays: no barrier between them.
+      bind(cmd, r, r.kernels.trace, queue_in, 0);
+      ++count.dispatches;
+      vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, active_groups_x));
       bind(cmd, r, r.kernels.trace_matter, queue_in, 0);
       ++count.dispatches;
       vkCmdDispatchIndirect(cmd, r.control.get(), args + offsetof(shader::QueueArgs, resolving_groups_x));
+      stamp(StageKernel::Trace);
     }
-    stamp(StageKernel::Trace);
     // Hits written by trace and trace_matter are read by resolve.
     ++count.barriers;
     vk::compute_to_compute(cmd);
