@@ -33,10 +33,9 @@ TEST(StepStart, QueueZeroHoldsTheStepsRaysInGroupsOfTheKernelsWidth) {
 
 TEST(StepStart, EveryCountStartsAtZeroAndTheConnectPassRunsOneGroup) {
   const shader::Control start = gpu::step_start_control(100, 8);
-  for (std::uint32_t count :
-       {start.step_indicators, start.step_casts, start.step_cut_short, start.step_connections, start.connect_count,
-        start.admit_count, start.tiebreak_count, start.resolve_done, start.connect_done, start.tiebreak_done,
-        start.copy_done})
+  for (std::uint32_t count : {start.step_indicators, start.step_casts, start.step_cut_short, start.step_connections,
+                              start.connect_count, start.admit_count, start.tiebreak_count, start.resolve_done,
+                              start.connect_done, start.tiebreak_done, start.copy_done})
     EXPECT_EQ(count, 0u);
   // The connect pass always runs a group: its last subgroup keeps the
   // totals and plans the admission, even in a step without rays.

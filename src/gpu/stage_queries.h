@@ -25,11 +25,12 @@ struct StageQueries {
   std::vector<StageKernel> kinds;
 };
 
-// Timestamps one step writes: its start, emit, then trace and resolve per
-// wavefront iteration (resolve's last workgroup does what the prepare
+// Timestamps one step writes: its start, emit (which casts the first
+// iteration's rays), then trace per wavefront iteration after the first and
+// resolve per iteration (resolve's last subgroup does what the prepare
 // dispatch did: Prepare stays unused), the casts to the listener and the
 // admission.
-inline std::uint32_t stage_queries_per_step(std::uint32_t iterations) { return 4 + 2 * iterations; }
+inline std::uint32_t stage_queries_per_step(std::uint32_t iterations) { return 3 + 2 * iterations; }
 
 // What a step recorded: dispatches (direct and indirect, empty ones too)
 // and the pipeline barriers between them.

@@ -1,7 +1,8 @@
 #include "gpu/step_recorder.h"
 
-#include <algorithm>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 
 #include "sp_ring.h"
 #include "sp_types.h"
@@ -46,6 +47,10 @@ shader::Control step_start_control(std::uint32_t total_rays, std::uint32_t group
 }
 
 void record_step_start(VkCommandBuffer cmd, const GpuResources& r, std::uint32_t total_rays) {
+  // The buffers and the dispatch limits were sized for max_rays.
+  if (total_rays > r.max_rays)
+    throw std::logic_error("a step of " + std::to_string(total_rays) + " rays, more than the " +
+                           std::to_string(r.max_rays) + " the buffers hold");
   const shader::Control start = step_start_control(total_rays, r.workgroup_size);
   vk::record_update(cmd, r.control, kStepBegin, reinterpret_cast<const std::byte*>(&start) + kStepBegin,
                     kStepEnd - kStepBegin);
