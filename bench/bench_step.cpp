@@ -52,7 +52,8 @@ constexpr const char* kUsage =
     "  --cpu-walk     soundpaint's CPU traversal: best (default: the fastest this CPU runs), baseline, avx512\n"
     "                (4-wide), avx512-8wide\n"
     "  --kernels      after each budget's GPU runs, N more steps with a timestamp after each kernel: per step\n"
-    "                 the dispatches and barriers recorded and the median GPU ms of each kernel (default 0)\n";
+    "                 the dispatches and barriers recorded and the median GPU ms of each kernel (default 0;\n"
+    "                 emit's time includes the first iteration's casts, which it makes)\n";
 
 struct Options {
   std::string scene = SP_DEFAULT_SCENE;
