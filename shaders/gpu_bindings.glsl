@@ -104,23 +104,6 @@ uint queue_entry(uint queue, uint i) {
 // (lavapipe, Mesa 22.3, does not specialize gl_WorkGroupSize in the code).
 layout(constant_id = SP_SPEC_GROUP_WIDTH) const uint kGroupWidth = SP_WORKGROUP_SIZE;
 
-// Group counts of `queue`'s three dispatches (QueueArgs) for its counts.
-uint group_count(uint invocations) { return (invocations + kGroupWidth - 1u) / kGroupWidth; }
-void set_queue_groups_for(uint queue, uint active_rays, uint resolving) {
-  control.queues[queue].group_count_x = group_count(active_rays + resolving);
-  control.queues[queue].group_count_y = 1u;
-  control.queues[queue].group_count_z = 1u;
-  control.queues[queue].active_groups_x = group_count(active_rays);
-  control.queues[queue].active_groups_y = 1u;
-  control.queues[queue].active_groups_z = 1u;
-  control.queues[queue].resolving_groups_x = group_count(resolving);
-  control.queues[queue].resolving_groups_y = 1u;
-  control.queues[queue].resolving_groups_z = 1u;
-}
-void set_queue_groups(uint queue) {
-  set_queue_groups_for(queue, control.queues[queue].active_count, control.queues[queue].resolving_count);
-}
-
 // Whether this subgroup is the last of its dispatch to finish, with every
 // other invocation's writes visible: each subgroup makes its writes
 // available, then takes a ticket for its invocations from a counter; the

@@ -113,14 +113,12 @@ void main() {
     // consumed is emptied for the iteration after.
     uint active_rays = atomicAdd(control.queues[queue_out].active_count, 0u);
     uint waiting = atomicAdd(control.queues[queue_out].resolving_count, 0u);
-    set_queue_groups_for(queue_out, active_rays, waiting);
-    control.queues[push.queue_in].active_count = 0u;
-    control.queues[push.queue_in].resolving_count = 0u;
-    set_queue_groups_for(push.queue_in, 0u, 0u);
+    control.queues[queue_out] = sp_queue_args(active_rays, waiting, kGroupWidth);
+    control.queues[push.queue_in] = sp_queue_args(0u, 0u, kGroupWidth);
     // The passes after the wavefront, for the step so far: the casts to the
     // listener (at least one workgroup: its last plans the admission) and
     // the admission over the capture list.
-    control.connect_group_count_x = max(1u, group_count(atomicAdd(control.connect_count, 0u)));
-    control.admit_group_count_x = group_count(atomicAdd(control.step_indicators, 0u));
+    control.connect_group_count_x = max(1u, sp_group_count(atomicAdd(control.connect_count, 0u), kGroupWidth));
+    control.admit_group_count_x = sp_group_count(atomicAdd(control.step_indicators, 0u), kGroupWidth);
   }
 }

@@ -47,8 +47,8 @@ SP_BEGIN_NAMESPACE
 // slot max_rays - 1 - j. The trace kernel runs over the Active rays and the
 // matter kernel over the resolving ones, so neither carries the other's
 // registers and each subgroup holds rays of one kind; resolve runs over
-// all. The resolve kernel appends by bumping one count; the prepare kernel
-// turns the counts into the next iteration's group counts.
+// all. The resolve kernel appends by bumping one count; its last subgroup
+// turns the counts into the next iteration's group counts (sp_queue_args).
 struct QueueArgs {
   uint group_count_x;  // resolve: every entry
   uint group_count_y;
@@ -64,6 +64,30 @@ struct QueueArgs {
   uint pad0;
 };
 SP_CHECK_LAYOUT(sizeof(QueueArgs) == 48 && offsetof(QueueArgs, active_groups_x) == 16 && offsetof(QueueArgs, resolving_groups_x) == 32);
+
+// Workgroups of `width` invocations that `invocations` need.
+SP_INLINE uint sp_group_count(uint invocations, uint width) { return (invocations + width - 1u) / width; }
+
+// A queue holding `active_rays` Active and `resolving` resolving rays, with its
+// dispatches' arguments for kernels `width` invocations wide: what the host
+// writes for queue 0 and 1 before a step (gpu::step_start_control) and
+// resolve's last subgroup for the next iteration.
+SP_INLINE QueueArgs sp_queue_args(uint active_rays, uint resolving, uint width) {
+  QueueArgs q;
+  q.group_count_x = sp_group_count(active_rays + resolving, width);
+  q.group_count_y = 1u;
+  q.group_count_z = 1u;
+  q.active_count = active_rays;
+  q.active_groups_x = sp_group_count(active_rays, width);
+  q.active_groups_y = 1u;
+  q.active_groups_z = 1u;
+  q.resolving_count = resolving;
+  q.resolving_groups_x = sp_group_count(resolving, width);
+  q.resolving_groups_y = 1u;
+  q.resolving_groups_z = 1u;
+  q.pad0 = 0u;
+  return q;
+}
 
 // GPU-written state of the simulation. draw_* is a VkDrawIndirectCommand the
 // indicator draw instances from.

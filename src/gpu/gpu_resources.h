@@ -35,8 +35,8 @@ struct ConfigSizes {
   std::uint32_t ring_capacity = 0;     // max_indicators
 };
 
-// Workgroups of `width` threads that `invocations` need (the host's twin of
-// group_count in shaders/gpu_bindings.glsl).
+// Workgroups of `width` threads that `invocations` need: sp_group_count
+// (sp_gpu_types.h) in 64 bits, for budgets whose count would overflow 32.
 inline std::uint64_t workgroups_for(std::uint64_t invocations, std::uint32_t width) {
   return (invocations + width - 1u) / width;
 }

@@ -18,17 +18,6 @@ void bind(VkCommandBuffer cmd, const GpuResources& r, const vk::ComputePipeline&
   vkCmdPushConstants(cmd, kernel.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
 }
 
-shader::QueueArgs queue_args(std::uint32_t active, std::uint32_t group_width) {
-  const auto groups = static_cast<std::uint32_t>(workgroups_for(active, group_width));
-  shader::QueueArgs args{};
-  args.group_count_x = groups;
-  args.active_count = active;
-  args.active_groups_x = groups;
-  args.group_count_y = args.group_count_z = args.active_groups_y = args.active_groups_z = 1;
-  args.resolving_groups_y = args.resolving_groups_z = 1;
-  return args;
-}
-
 constexpr std::size_t kStepBegin = offsetof(shader::Control, queues);
 constexpr std::size_t kStepEnd = offsetof(shader::Control, ring_head);
 static_assert(offsetof(shader::Control, copy_done) < kStepEnd &&
@@ -39,8 +28,8 @@ static_assert(offsetof(shader::Control, copy_done) < kStepEnd &&
 
 shader::Control step_start_control(std::uint32_t total_rays, std::uint32_t group_width) {
   shader::Control start{};
-  start.queues[0] = queue_args(total_rays, group_width);
-  start.queues[1] = queue_args(0, group_width);
+  start.queues[0] = shader::sp_queue_args(total_rays, 0, group_width);
+  start.queues[1] = shader::sp_queue_args(0, 0, group_width);
   start.connect_group_count_x = start.connect_group_count_y = start.connect_group_count_z = 1;
   start.admit_group_count_y = start.admit_group_count_z = 1;
   return start;
