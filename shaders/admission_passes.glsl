@@ -36,7 +36,7 @@ void mark(Indicator ind) {
 // Capture entry i and its admission bin when valid; bin 0 otherwise.
 uint capture_entry(uint i, bool valid, out Indicator ind) {
   if (!valid) return 0u;
-  ind = capture[i];
+  ind = load_capture(i);
   return sp_admission_bin(ind, step_input.inv_indicator_size);
 }
 
@@ -68,7 +68,7 @@ void admission_decide_tiebreaks() {
   uint listed = control.tiebreak_count;
   uint list = SP_TIEBREAK_LIST(push.max_rays, push.iterations);
   for (uint k = lane; k < listed; k += gl_SubgroupSize) {
-    Indicator ind = capture[admission_histogram[list + k]];
+    Indicator ind = load_capture(admission_histogram[list + k]);
     uint c = sp_bin_class(sp_admission_bin(ind, step_input.inv_indicator_size));
     if (sp_admission_tiebreak(ind) >= admission_histogram[SP_ADMISSION_PLAN_TIEBREAK + c]) mark(ind);
   }
@@ -107,7 +107,7 @@ void admission_copy_entry(uint i, bool valid) {
     uint words = SP_ORDER_WORDS(push.max_rays, push.iterations);
     uint rank = admission_histogram[SP_ORDER_BITMAP + words + word] +
                 bitCount(admission_histogram[SP_ORDER_BITMAP + word] & ((1u << (key % 32u)) - 1u));
-    ring[(control.ring_head + rank) % step_input.ring_capacity] = ind;
+    store_ring((control.ring_head + rank) % step_input.ring_capacity, ind);
   }
 }
 

@@ -39,7 +39,7 @@ uint live_slots(uint now) {
   uint hi = filled;
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
-    uint birth = ring[(oldest + mid) % capacity].step;
+    uint birth = ring_birth_step((oldest + mid) % capacity);
     if (sp_indicator_live(now, birth, step_input.dt, step_input.lifetime)) hi = mid; else lo = mid + 1u;
   }
   return filled - lo;
@@ -67,17 +67,16 @@ void main() {
   bool valid = i < control.connect_count;
   if (valid) {
     uint slot = connect_queue[i];
-    Indicator ind = capture[slot];
+    Indicator ind = load_capture(slot);
     SimParams p = step_input.params;
     Connection c = sp_connection(ind, p);
     bool open = !sp_segment_blocked(c.origin, c.dir, 0.0f, c.distance);
-    sp_finish_connection(ind, c, open, step_sources[ind.source_slot], p);
+    sp_finish_connection(ind, c, open, load_step_source(ind.source_slot), p);
     // Only what the connection changed goes back.
-    capture[slot].heard = ind.heard;
-    capture[slot].toward = ind.toward;
+    store_capture_heard(slot, ind.heard, ind.toward);
     float inv_size = step_input.inv_indicator_size;
     if (ind.heard > 0.0f) {
-      uint base = sp_guide_base(step_sources[ind.source_slot].source_id);
+      uint base = sp_guide_base(step_source_id(ind.source_slot));
       atomicAdd(guide[base + SP_GUIDE_PENDING + ind.emit_cell],
                 sp_guide_spot_weight(sp_heard_relative(ind, inv_size), ind.toward));
     }
@@ -91,7 +90,7 @@ void main() {
   if (!last_subgroup(SP_TICKET_CONNECT)) return;
   // Each step source's guide takes in what its heard spots added.
   for (uint s = gl_SubgroupInvocationID; s < step_input.source_count; s += gl_SubgroupSize)
-    sp_guide_fold(sp_guide_base(step_sources[s].source_id));
+    sp_guide_fold(sp_guide_base(step_source_id(s)));
   uint listed = control.step_indicators;
   bool admit_here = listed > 0u && listed <= kAdmitInlineMax;
   if (subgroupElect()) {

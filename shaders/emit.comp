@@ -22,15 +22,16 @@ void main() {
     uint hi = step_input.source_count - 1u;
     while (lo < hi) {
       uint mid = (lo + hi + 1u) / 2u;
-      if (step_sources[mid].first_ray <= i) lo = mid; else hi = mid - 1u;
+      if (step_source_first_ray(mid) <= i) lo = mid; else hi = mid - 1u;
     }
     uint cell;
-    vec3 dir = sp_source_emission(step_sources[lo], i, step_input.params, cell);
-    RayState r = sp_emit_ray(step_sources[lo], lo, i, dir, cell);
-    rays[i] = r;
+    StepSource source = load_step_source(lo);
+    vec3 dir = sp_source_emission(source, i, step_input.params, cell);
+    RayState r = sp_emit_ray(source, lo, i, dir, cell);
+    store_ray(i, r);
     queue_entries[i] = i;
     HitInfo hit = sp_closest_hit(r.origin, r.dir, 0.0f, sp_active_reach(r, step_input.params));
-    hits[i] = CastResult(hit.t, hit.triangle, 0.0f, hit.cut_short != 0u ? SP_CAST_CUT_SHORT : 0u);
+    store_hit(i, CastResult(hit.t, hit.triangle, 0.0f, hit.cut_short != 0u ? SP_CAST_CUT_SHORT : 0u));
   }
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_casts, casts);

@@ -27,12 +27,12 @@ void main() {
   Indicator sheet_exit;
   if (valid) {
     ray_index = queue_entry(push.queue_in, i);
-    RayState r = rays[ray_index];
-    CastResult found = hits[ray_index];
+    RayState r = load_ray(ray_index);
+    CastResult found = load_hit(ray_index);
     // On a miss the model reads no triangle field but the layer index the
     // caller passes; triangle 0 keeps that index in range.
-    BvhTriangle tri = bvh_triangles[found.triangle != SP_INVALID ? found.triangle : 0u];
-    StepSource source = step_sources[r.source];
+    BvhTriangle tri = sp_bvh_triangle(found.triangle != SP_INVALID ? found.triangle : 0u);
+    StepSource source = load_step_source(r.source);
     // The edge table holds one entry only while diffraction is off.
     TriangleEdges edges = TriangleEdges(vec3(0.0), 0u, vec3(0.0), 0u);
     if (step_input.params.diffraction != 0u && found.triangle != SP_INVALID) edges = triangle_edges[found.triangle];
@@ -50,7 +50,7 @@ void main() {
       if ((outcome & SP_OUTCOME_NO_WAY_OUT) != 0u) count_event(r.entry_layer, SP_COUNTER_NO_WAY_OUT);
     }
     cut_short = (outcome & SP_OUTCOME_CUT_SHORT) != 0u;
-    rays[ray_index] = r;
+    store_ray(ray_index, r);
     alive = r.state != SP_RAY_DEAD;
     resolving = r.state == SP_RAY_RESOLVING;
     made = (outcome & SP_OUTCOME_INDICATOR) != 0u ? ((outcome & SP_OUTCOME_SHEET_EXIT) != 0u ? 2u : 1u) : 0u;
@@ -79,8 +79,8 @@ void main() {
   if (total > 0u) {
     if (subgroupElect()) base = atomicAdd(control.step_indicators, total);
     base = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(made);
-    if (made > 0u) capture[base] = indicator;
-    if (made > 1u) capture[base + 1u] = sheet_exit;
+    if (made > 0u) store_capture(base, indicator);
+    if (made > 1u) store_capture(base + 1u, sheet_exit);
   }
   uint connect_made = (connect_first ? 1u : 0u) + (connect_second ? 1u : 0u);
   uint connect_total = subgroupAdd(connect_made);

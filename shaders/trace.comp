@@ -15,9 +15,9 @@ void main() {
   bool valid = i < control.queues[push.queue_in].active_count;
   if (valid) {
     uint ray_index = queue_entry(push.queue_in, i);
-    RayState r = rays[ray_index];
+    RayState r = load_ray(ray_index);
     HitInfo hit = sp_closest_hit(r.origin, r.dir, 0.0f, sp_active_reach(r, step_input.params));
-    hits[ray_index] = CastResult(hit.t, hit.triangle, 0.0f, hit.cut_short != 0u ? SP_CAST_CUT_SHORT : 0u);
+    store_hit(ray_index, CastResult(hit.t, hit.triangle, 0.0f, hit.cut_short != 0u ? SP_CAST_CUT_SHORT : 0u));
   }
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_casts, casts);

@@ -15,10 +15,10 @@ void main() {
   bool valid = i < control.queues[push.queue_in].resolving_count;
   if (valid) {
     uint ray_index = queue_entry(push.queue_in, control.queues[push.queue_in].active_count + i);
-    RayState r = rays[ray_index];
+    RayState r = load_ray(ray_index);
     HitList list;
     sp_nearest_hits(r.entry, r.dir, sp_matter_tmin(), step_input.params.max_wall_thickness, list);
-    hits[ray_index] = sp_find_exit(list, r.entry_triangle);
+    store_hit(ray_index, sp_find_exit(list, r.entry_triangle));
   }
   uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_casts, casts);
