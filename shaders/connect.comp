@@ -63,9 +63,16 @@ void add_totals() {
 }
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
-  bool valid = i < control.connect_count;
-  if (valid) {
+  // At most kConnectGroupsMax workgroups: each lane takes a spot in turn.
+  // The loop's condition is the subgroup's, so that its subgroup operations
+  // see every lane.
+  uint spots = control.connect_count;
+  uint lanes = gl_NumWorkGroups.x * kGroupWidth;
+  uint casts = 0u;
+  for (uint i = gl_GlobalInvocationID.x; subgroupBallot(i < spots) != uvec4(0u); i += lanes) {
+    bool valid = i < spots;
+    casts += subgroupAdd(valid ? 1u : 0u);
+    if (!valid) continue;
     uint slot = connect_queue[i];
     Indicator ind = load_capture(slot);
     SimParams p = step_input.params;
@@ -84,7 +91,6 @@ void main() {
     atomicAdd(admission_histogram[bin], 1u);
     atomicAdd(admission_histogram[SP_ADMISSION_CLASS_COUNTS + sp_bin_class(bin)], 1u);
   }
-  uint casts = subgroupAdd(valid ? 1u : 0u);
   if (subgroupElect() && casts > 0u) atomicAdd(control.step_connections, casts);
 
   if (!last_subgroup(SP_TICKET_CONNECT)) return;

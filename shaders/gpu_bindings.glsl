@@ -201,6 +201,8 @@ uint queue_entry(uint queue, uint i) {
 // code reads it: a scalar constant the host specializes to the same value
 // (lavapipe, Mesa 22.3, does not specialize gl_WorkGroupSize in the code).
 layout(constant_id = SP_SPEC_GROUP_WIDTH) const uint kGroupWidth = SP_WORKGROUP_SIZE;
+// The most workgroups the connect pass runs (gpu::connect_groups_max).
+layout(constant_id = SP_SPEC_CONNECT_GROUPS_MAX) const uint kConnectGroupsMax = 0xFFFFFFFFu;
 
 // Whether this subgroup is the last of its dispatch to finish, with every
 // other invocation's writes visible: each subgroup makes its writes

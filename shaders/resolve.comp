@@ -118,7 +118,8 @@ void main() {
     // The passes after the wavefront, for the step so far: the casts to the
     // listener (at least one workgroup: its last plans the admission) and
     // the admission over the capture list.
-    control.connect_group_count_x = max(1u, sp_group_count(atomicAdd(control.connect_count, 0u), kGroupWidth));
+    uint connect_groups = sp_group_count(atomicAdd(control.connect_count, 0u), kGroupWidth);
+    control.connect_group_count_x = clamp(connect_groups, 1u, kConnectGroupsMax);
     control.admit_group_count_x = sp_group_count(atomicAdd(control.step_indicators, 0u), kGroupWidth);
   }
 }

@@ -65,22 +65,29 @@ WidthRun run_with_width(std::uint32_t workgroup_size) {
   return run_steps(*sim);
 }
 
-// The same steps with the other way of admitting the steps of more than 64
-// spots: the two admit dispatches where the device's choice is the connect
-// pass (a CPU device), the connect pass where it is the dispatches.
-WidthRun run_with_the_other_admission() {
-  const vk::Context& shared = *test::GpuEnvironment::context();
+// The same steps on a context of the shared one's device whose kernels
+// are set up as `kernels` asks.
+WidthRun run_with_kernels(const vk::KernelSettings& kernels) {
   vk::ContextSettings settings;
   settings.validation = true;
-  settings.device_name = shared.properties().deviceName;
-  settings.kernels.workgroup_size = SP_WORKGROUP_SIZE;
-  const bool dispatches_by_default = gpu::inline_admission_max(shared) == 64u;
-  settings.kernels.inline_admission_max = dispatches_by_default ? std::numeric_limits<std::uint32_t>::max() : 64u;
+  settings.device_name = test::GpuEnvironment::context()->properties().deviceName;
+  settings.kernels = kernels;
   std::unique_ptr<vk::Context> context = vk::Context::create(settings).value();
   auto sim = gpu::create_simulator(make_world(test::closed_room(), room_config(8)).value(), *context).value();
   WidthRun out = run_steps(*sim);
   EXPECT_EQ(context->validation_message_count(), 0u);
   return out;
+}
+
+// The same steps with the other way of admitting the steps of more than 64
+// spots: the two admit dispatches where the device's choice is the connect
+// pass (a CPU device), the connect pass where it is the dispatches.
+WidthRun run_with_the_other_admission() {
+  vk::KernelSettings kernels;
+  kernels.workgroup_size = SP_WORKGROUP_SIZE;
+  const bool dispatches_by_default = gpu::inline_admission_max(*test::GpuEnvironment::context()) == 64u;
+  kernels.inline_admission_max = dispatches_by_default ? std::numeric_limits<std::uint32_t>::max() : 64u;
+  return run_with_kernels(kernels);
 }
 
 TEST_F(KernelWidth, ACpuDeviceGetsItsSubgroupWidthWiderOnlyForABudgetThatNeedsIt) {
@@ -123,6 +130,26 @@ TEST_F(KernelWidth, TheAdmitDispatchesAdmitWhatTheConnectPassAdmits) {
   expect_same_bytes(other.indicators, reference.indicators);
   expect_same_bytes(other.live, reference.live);
   EXPECT_EQ(other.stats.indicators, reference.stats.indicators);
+}
+
+// The connect pass over hundreds of spots a step in one workgroup (each
+// lane casting for many spots in turn), in three, and in a lane a spot.
+TEST_F(KernelWidth, TheSameSpotsHeardWhateverTheConnectPassesWorkgroups) {
+  const WidthRun reference = run_with_width(0);
+  const std::uint32_t width = gpu::kernel_workgroup_size(*test::GpuEnvironment::context(), 300);
+  // Over its four steps of 300 rays, each of three workgroups' lanes casts
+  // for several spots in turn.
+  ASSERT_GT(reference.stats.connections, 4u * 3u * width * 4u);
+  for (std::uint32_t most : {1u, 3u, std::numeric_limits<std::uint32_t>::max()}) {
+    SCOPED_TRACE(most);
+    vk::KernelSettings kernels;
+    kernels.connect_groups_max = most;
+    const WidthRun other = run_with_kernels(kernels);
+    EXPECT_EQ(other.per_step, reference.per_step);
+    expect_same_bytes(other.indicators, reference.indicators);
+    expect_same_bytes(other.live, reference.live);
+    EXPECT_EQ(other.stats.connections, reference.stats.connections);
+  }
 }
 
 TEST_F(KernelWidth, AWidthThatIsNoMultipleOfTheSubgroupOrBeyondTheLimitIsRefusedNamingIt) {

@@ -23,6 +23,9 @@
 // Whether the walks read the tree from its uniform texel buffers (1) or
 // its storage buffers (0): gpu::bvh_texels_usable.
 #define SP_SPEC_BVH_TEXELS 3
+// The most workgroups the connect pass runs, its subgroups then taking a
+// spot a lane in turn until none is left (gpu::connect_groups_max).
+#define SP_SPEC_CONNECT_GROUPS_MAX 4
 // Surface offset (metres) applied after reflections and exits, so a ray
 // never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "admit.comp.spv.h"
 #include "connect.comp.spv.h"
@@ -141,6 +142,13 @@ std::uint32_t inline_admission_max(const vk::Context& context) {
                                                                         : SP_WORKGROUP_SIZE;
 }
 
+std::uint32_t connect_groups_max(const vk::Context& context) {
+  const std::uint32_t requested = context.requested_kernels().connect_groups_max;
+  if (requested != 0) return requested;
+  if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return std::numeric_limits<std::uint32_t>::max();
+  return 2 * std::max(1u, std::thread::hardware_concurrency());
+}
+
 namespace {
 
 // RGBA32UI texels of a node and of a triangle (BvhNode, BvhTriangle).
@@ -269,10 +277,10 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
 
   const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
   static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1 && SP_SPEC_ADMIT_INLINE_MAX == 2 &&
-                    SP_SPEC_BVH_TEXELS == 3,
+                    SP_SPEC_BVH_TEXELS == 3 && SP_SPEC_CONNECT_GROUPS_MAX == 4,
                 "the kernels' specialization constants, in order");
   const std::uint32_t spec[] = {workgroup_size, workgroup_size, inline_admission_max(context),
-                                bvh_texels ? VK_TRUE : VK_FALSE};
+                                bvh_texels ? VK_TRUE : VK_FALSE, connect_groups_max(context)};
   auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
     return vk::ComputePipeline(context, spirv, bindings.layout(), push, name, spec);
   };

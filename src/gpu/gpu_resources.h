@@ -62,6 +62,15 @@ std::uint32_t kernel_workgroup_size(const vk::Context& context, std::uint32_t ma
 // many spots would cost more than the two dispatches).
 std::uint32_t inline_admission_max(const vk::Context& context);
 
+// The most workgroups the connect pass runs: the one ContextSettings asked
+// for; else, on a CPU device, two for each of the host's hardware threads
+// (lavapipe's pool has a thread for each); else no limit. Fewer groups, each
+// of whose subgroups takes a spot a lane in turn, pay on a CPU device:
+// there a branch is no jump, so every subgroup runs the code of the last
+// one's bookkeeping with its lanes masked off (bench/RESULTS.md section 34).
+// A GPU wants a lane for every spot.
+std::uint32_t connect_groups_max(const vk::Context& context);
+
 // Whether the walks can read a tree of `nodes` nodes over `triangles`
 // triangles from uniform texel buffers (two RGBA32UI texels a node, four a
 // triangle): when each fits the device's maxTexelBufferElements (or the

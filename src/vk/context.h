@@ -28,6 +28,8 @@ struct KernelSettings {
   // The most spots a step may have for the connect pass to admit them
   // itself (gpu::inline_admission_max).
   std::uint32_t inline_admission_max = 0;
+  // The most workgroups the connect pass runs (gpu::connect_groups_max).
+  std::uint32_t connect_groups_max = 0;
   // The most texels the walks' tree may take in one uniform texel buffer,
   // below the device's maxTexelBufferElements; a tree needing more is read
   // from its storage buffers (gpu::bvh_texels_usable).
