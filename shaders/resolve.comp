@@ -12,6 +12,10 @@
 
 layout(local_size_x = SP_WORKGROUP_SIZE, local_size_x_id = SP_SPEC_WORKGROUP_SIZE) in;
 
+// With diffraction off its code is compiled out (SP_SPEC_DIFFRACTION): the
+// step's params then say 0 too, which the host checks.
+layout(constant_id = SP_SPEC_DIFFRACTION) const bool kDiffraction = true;
+
 void count_event(uint layer, uint slot) { atomicAdd(counters[layer * SP_COUNTERS_PER_LAYER + slot], 1u); }
 
 void main() {
@@ -33,12 +37,14 @@ void main() {
     // caller passes; triangle 0 keeps that index in range.
     BvhTriangle tri = sp_bvh_triangle(found.triangle != SP_INVALID ? found.triangle : 0u);
     StepSource source = load_step_source(r.source);
+    SimParams params = step_input.params;
+    if (!kDiffraction) params.diffraction = 0u;
     // The edge table holds one entry only while diffraction is off.
     TriangleEdges edges = TriangleEdges(vec3(0.0), 0u, vec3(0.0), 0u);
-    if (step_input.params.diffraction != 0u && found.triangle != SP_INVALID) edges = triangle_edges[found.triangle];
+    if (params.diffraction != 0u && found.triangle != SP_INVALID) edges = triangle_edges[found.triangle];
     uint outcome;
     if (r.state == SP_RAY_ACTIVE) {
-      outcome = sp_resolve_active(r, found, tri, edges, layers[tri.layer], source, step_input.params, indicator,
+      outcome = sp_resolve_active(r, found, tri, edges, layers[tri.layer], source, params, indicator,
                                   sheet_exit);
       if ((outcome & SP_OUTCOME_HIT) != 0u) count_event(tri.layer, SP_COUNTER_HITS);
       if ((outcome & SP_OUTCOME_REFLECT) != 0u) count_event(tri.layer, SP_COUNTER_REFLECTIONS);

@@ -339,6 +339,20 @@ TEST_P(DiffractionParity, CpuAndGpuAgreeIndicatorForIndicator) {
   }
 }
 
+// The CPU's and the GPU's spots, in the same order: of the same kind, ray
+// and turns, at the same place.
+void expect_same_spots(const std::vector<Indicator>& cpu, const std::vector<Indicator>& gpu) {
+  ASSERT_EQ(cpu.size(), gpu.size());
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < cpu.size(); ++k) {
+    const Indicator& c = cpu[k];
+    const Indicator& g = gpu[k];
+    differing += !(c.kind == g.kind && c.ray_index == g.ray_index && c.diffractions == g.diffractions &&
+                   glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f);
+  }
+  EXPECT_EQ(differing, 0u) << "of " << cpu.size();
+}
+
 // A moving part changes which edges are exposed: the block between the
 // legs, lifted out of the corridor, uncovers the walls' ends it buried.
 // Both backends must find them again (the GPU uploads the changed entries)
@@ -367,15 +381,33 @@ TEST_F(DiffractionMovingParts, BothBackendsFollowTheEdgesAMovedPartUncovers) {
   }
   EXPECT_GT(wall_turns[0], 0u);
   EXPECT_EQ(wall_turns[0], wall_turns[1]);
-  ASSERT_EQ(lists[0].size(), lists[1].size());
-  std::size_t differing = 0;
-  for (std::size_t k = 0; k < lists[0].size(); ++k) {
-    const Indicator& c = lists[0][k];
-    const Indicator& g = lists[1][k];
-    differing += !(c.kind == g.kind && c.ray_index == g.ray_index && c.diffractions == g.diffractions &&
-                   glm::distance(sp::to_glm(c.position), sp::to_glm(g.position)) <= 1e-5f);
+  expect_same_spots(lists[0], lists[1]);
+}
+
+// Diffraction switched on, then off, by set_config: the GPU's resolve
+// kernel, whose code is built with or without diffraction, follows, and the
+// two backends keep agreeing.
+TEST_F(DiffractionMovingParts, BothBackendsFollowDiffractionSwitchedOnAndOff) {
+  std::vector<Indicator> lists[2];
+  std::uint64_t turns[2][3] = {};  // per backend: diffractions after each phase
+  for (Backend backend : {Backend::Cpu, Backend::Gpu}) {
+    World world = make_world(l_corridor(), l_corridor_config(false)).value();
+    auto sim = make_simulator(std::move(world), backend);
+    const bool gpu = backend == Backend::Gpu;
+    for (int phase = 0; phase < 3; ++phase) {
+      if (phase > 0) {
+        ASSERT_TRUE(sim->set_config(l_corridor_config(phase == 1)).ok());
+      }
+      test::Recorded steps = test::run_steps(*sim, 2);
+      lists[gpu].insert(lists[gpu].end(), steps.indicators.begin(), steps.indicators.end());
+      for (const LayerCounters& layer : steps.stats.layers) turns[gpu][phase] += layer.diffractions;
+    }
   }
-  EXPECT_EQ(differing, 0u) << "of " << lists[0].size();
+  EXPECT_EQ(turns[0][0], 0u);
+  EXPECT_GT(turns[0][1], 20u);
+  EXPECT_EQ(turns[0][2], turns[0][1]);  // totals: none added once it is off
+  for (int phase = 0; phase < 3; ++phase) EXPECT_EQ(turns[1][phase], turns[0][phase]) << phase;
+  expect_same_spots(lists[0], lists[1]);
 }
 
 INSTANTIATE_TEST_SUITE_P(OnAndOff, DiffractionParity, ::testing::Bool(),

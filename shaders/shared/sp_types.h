@@ -26,6 +26,10 @@
 // The most workgroups the connect pass runs, its subgroups then taking a
 // spot a lane in turn until none is left (gpu::connect_groups_max).
 #define SP_SPEC_CONNECT_GROUPS_MAX 4
+// Whether resolve's rays may diffract (the config's diffraction.enabled):
+// lavapipe runs every branch, so the code a config leaves off costs unless
+// it is compiled out (GpuResources::resolve_diffracts).
+#define SP_SPEC_DIFFRACTION 5
 // Surface offset (metres) applied after reflections and exits, so a ray
 // never re-hits the face it just left.
 #define SP_EPSILON 1.0e-4f

@@ -45,6 +45,8 @@ GpuResize::GpuResize(vk::Context& context, const GpuResources& resources, const 
     vk::upload(context, edges_, bvh.edges.data(), bytes);
     edge_count_ = bvh.edges.size();
   }
+  diffraction_ = config.diffraction.enabled;
+  if (diffraction_ != resources.resolve_diffracts) resolve_ = make_resolve_kernel(context, resources, diffraction_);
 }
 
 std::uint32_t GpuResize::kept_spots(std::uint32_t filled) const { return std::min(filled, sizes_.ring_capacity); }
@@ -99,6 +101,10 @@ void GpuResize::commit(vk::Context& context, GpuResources& resources, shader::Co
     resources.edges = std::move(edges_);
     resources.edge_count = edge_count_;
     resources.bindings.bind(context, SP_BINDING_EDGES, resources.edges);
+  }
+  if (diffraction_ != resources.resolve_diffracts) {
+    resources.kernels.resolve = std::move(resolve_);  // the device is done with the old one
+    resources.resolve_diffracts = diffraction_;
   }
   resources.max_rays = sizes_.max_rays;
   resources.iterations = sizes_.iterations;

@@ -1,9 +1,9 @@
 // The GPU backend's side of Simulator::set_config: the buffers a new config
 // sizes differently, made aside, then committed into GpuResources with what
 // carries the simulation's state across (the ring's spots and its head,
-// the layers' acoustics). The kernels and the descriptor set are kept: no
-// pipeline is specialised by the config, and the set is pointed at the new
-// buffers.
+// the layers' acoustics). The descriptor set is kept and pointed at the new
+// buffers; the kernels are kept but resolve, rebuilt when diffraction is
+// switched on or off (make_resolve_kernel).
 #pragma once
 
 #include <array>
@@ -24,7 +24,8 @@ class GpuResize {
  public:
   // Creates the buffers `resources` needs for `config` (those whose size
   // changes, and the exposed edges of `bvh` when diffraction is on and the
-  // edges buffer holds none, uploaded now). Throws sp::Exception
+  // edges buffer holds none, uploaded now), and resolve's kernel when
+  // diffraction is switched on or off. Throws sp::Exception
   // (LimitExceeded: a device limit; Vulkan) with `resources` untouched.
   GpuResize(vk::Context& context, const GpuResources& resources, const Config& config, const Bvh& bvh);
 
@@ -39,8 +40,9 @@ class GpuResize {
   void record(VkCommandBuffer cmd, const GpuResources& resources, const shader::Control& control,
               std::span<const shader::LayerAcoustics> layer_table) const;
 
-  // After the recorded work is done: moves the new buffers into
-  // `resources`, points the descriptor set at them and takes the new sizes.
+  // After the recorded work is done: moves the new buffers (and kernel)
+  // into `resources`, points the descriptor set at them and takes the new
+  // sizes.
   // `control` (the host's copy of the control block) takes the ring's new
   // head and fill.
   void commit(vk::Context& context, GpuResources& resources, shader::Control& control);
@@ -54,7 +56,9 @@ class GpuResize {
   ConfigSizes sizes_;
   std::array<vk::Buffer, kSizedBufferCount> buffers_;  // per kSizedBuffers entry, when replaced
   std::array<bool, kSizedBufferCount> replaced_{};
-  vk::Buffer edges_;  // the exposed edges, when they must be uploaded
+  vk::Buffer edges_;             // the exposed edges, when they must be uploaded
+  vk::ComputePipeline resolve_;  // resolve for the config's diffraction, when it changes
+  bool diffraction_ = false;
   std::size_t edge_count_ = 0;
 };
 

@@ -275,21 +275,33 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   bindings.bind(context, SP_BINDING_NODE_TEXELS, node_texels.get());
   bindings.bind(context, SP_BINDING_TRIANGLE_TEXELS, triangle_texels.get());
 
-  const auto push = static_cast<std::uint32_t>(sizeof(shader::WavefrontPush));
   static_assert(SP_SPEC_WORKGROUP_SIZE == 0 && SP_SPEC_GROUP_WIDTH == 1 && SP_SPEC_ADMIT_INLINE_MAX == 2 &&
-                    SP_SPEC_BVH_TEXELS == 3 && SP_SPEC_CONNECT_GROUPS_MAX == 4,
+                    SP_SPEC_BVH_TEXELS == 3 && SP_SPEC_CONNECT_GROUPS_MAX == 4 && SP_SPEC_DIFFRACTION == 5,
                 "the kernels' specialization constants, in order");
-  const std::uint32_t spec[] = {workgroup_size, workgroup_size, inline_admission_max(context),
-                                bvh_texels ? VK_TRUE : VK_FALSE, connect_groups_max(context)};
+  kernel_specialization = {workgroup_size,
+                           workgroup_size,
+                           inline_admission_max(context),
+                           bvh_texels ? VK_TRUE : VK_FALSE,
+                           connect_groups_max(context),
+                           VK_TRUE};
   auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
-    return vk::ComputePipeline(context, spirv, bindings.layout(), push, name, spec);
+    return vk::ComputePipeline(context, spirv, bindings.layout(), sizeof(shader::WavefrontPush), name,
+                               kernel_specialization);
   };
   kernels.emit = kernel(sp_spirv_emit_comp, "emit");
   kernels.trace = kernel(sp_spirv_trace_comp, "trace");
   kernels.trace_matter = kernel(sp_spirv_trace_matter_comp, "trace_matter");
-  kernels.resolve = kernel(sp_spirv_resolve_comp, "resolve");
+  kernels.resolve = make_resolve_kernel(context, *this, world.config.diffraction.enabled);
+  resolve_diffracts = world.config.diffraction.enabled;
   kernels.connect = kernel(sp_spirv_connect_comp, "connect");
   kernels.admit = kernel(sp_spirv_admit_comp, "admit");
+}
+
+vk::ComputePipeline make_resolve_kernel(const vk::Context& context, const GpuResources& resources, bool diffraction) {
+  std::array<std::uint32_t, kKernelSpecializationCount> specialization = resources.kernel_specialization;
+  specialization[SP_SPEC_DIFFRACTION] = diffraction ? VK_TRUE : VK_FALSE;
+  return vk::ComputePipeline(context, sp_spirv_resolve_comp, resources.bindings.layout(), sizeof(shader::WavefrontPush),
+                             diffraction ? "resolve (diffraction)" : "resolve", specialization);
 }
 
 }  // namespace sp::gpu

@@ -5,6 +5,7 @@
 // recorded step (StepEngine) to copy them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -100,6 +101,9 @@ vk::Buffer create_sized_buffer(const vk::Context& context, const SizedBuffer& bu
 // The bytes `buffer` takes for `sizes`.
 VkDeviceSize sized_buffer_bytes(const SizedBuffer& buffer, const ConfigSizes& sizes);
 
+// Specialization constants of the simulation's kernels (SP_SPEC_*).
+inline constexpr std::size_t kKernelSpecializationCount = 6;
+
 struct GpuResources {
   // Sizes all buffers for `world`; throws sp::Exception (LimitExceeded when
   // a buffer would exceed the device's storage-buffer range).
@@ -153,6 +157,18 @@ struct GpuResources {
   std::vector<InitialCopy> initial_copies;
   vk::StorageBindings bindings;
   Kernels kernels;
+  // The kernels' specialization constants (SP_SPEC_*), as the device and
+  // the first config chose them; resolve's SP_SPEC_DIFFRACTION aside.
+  std::array<std::uint32_t, kKernelSpecializationCount> kernel_specialization{};
+  // Whether kernels.resolve was built with diffraction's code
+  // (make_resolve_kernel): the config's diffraction.enabled, which every
+  // step's params must match.
+  bool resolve_diffracts = false;
 };
+
+// resources.kernels.resolve's like, with diffraction's code where
+// `diffraction` and without it elsewhere (SP_SPEC_DIFFRACTION). Throws
+// sp::Exception on failure.
+vk::ComputePipeline make_resolve_kernel(const vk::Context& context, const GpuResources& resources, bool diffraction);
 
 }  // namespace sp::gpu
