@@ -18,9 +18,13 @@
 #ifdef __cplusplus
 #define SP_BVH_ARGS_DECL const BvhNode *bvh_nodes, const BvhTriangle *bvh_triangles,
 #define SP_BVH_ARGS bvh_nodes, bvh_triangles,
+#define SP_NODE_ARGS_DECL const BvhNode *bvh_nodes,  // for what reads the nodes only
+#define SP_NODE_ARGS bvh_nodes,
 #else
 #define SP_BVH_ARGS_DECL
 #define SP_BVH_ARGS
+#define SP_NODE_ARGS_DECL
+#define SP_NODE_ARGS
 #endif
 
 // The walks read the tree through these accessors. C++ reads the arrays;
@@ -188,6 +192,33 @@ SP_INLINE bool sp_enter_left(float t_left, float t_right) {
   return t_right == SP_FAR || (t_left != SP_FAR && t_left <= t_right);
 }
 
+// A walk's step down the inner node whose children start at `left`: their
+// box tests under the far limit `limit`, then, when at least one is
+// reached, the child entered (sp_enter_left), read as the box tests read
+// it, and the other, which waits on the stack when it was reached too.
+struct SpDescent {
+  uint reached;  // 0: neither child is, the walk pops
+  uint node_count;
+  uint node_first;
+  uint waiting;  // pushed when `pushes` is 1, with its entry distance
+  float waiting_entry;
+  uint pushes;
+};
+
+SP_INLINE SpDescent sp_descend(SP_NODE_ARGS_DECL RayQuery q, uint left, float limit) {
+  float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), limit);
+  float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), limit);
+  bool enter_left = sp_enter_left(t_left, t_right);
+  SpDescent d;
+  d.reached = t_left != SP_FAR || t_right != SP_FAR ? 1u : 0u;
+  d.node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
+  d.node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
+  d.waiting = enter_left ? left + 1u : left;
+  d.waiting_entry = enter_left ? t_right : t_left;
+  d.pushes = t_left != SP_FAR && t_right != SP_FAR ? 1u : 0u;
+  return d;
+}
+
 // Closest hit with distance in (tmin, tmax]. Two-sided triangles. A walk
 // whose next leaf would take it past SP_MAX_CAST_PACKETS ends there with no
 // hit and cut_short set.
@@ -208,7 +239,28 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
   if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), best.t) == SP_FAR) return best;
 
   for (;;) {
-    if (node_count > 0u) {
+    // Down the inner nodes to a leaf: into the nearer child reached, the
+    // farther, if reached too, waiting on the stack; stopped where neither
+    // child is reached. The inner nodes have a loop of their own, so that
+    // lanes walking side by side run the leaf's code together, once they
+    // have all reached a leaf (docs/model.md#the-walks-loops); each walk
+    // visits the same nodes in the same order as with one loop.
+    bool at_leaf = true;
+    while (node_count == 0u) {
+      SpDescent down = sp_descend(SP_NODE_ARGS q, node_first, best.t);
+      if (down.reached == 0u) {
+        at_leaf = false;
+        break;
+      }
+      if (down.pushes != 0u) {
+        stack[stack_size] = down.waiting;
+        stack_entry[stack_size] = down.waiting_entry;
+        stack_size += 1u;
+      }
+      node_count = down.node_count;
+      node_first = down.node_first;
+    }
+    if (at_leaf) {
       packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) {
         best.t = tmax;
@@ -225,23 +277,6 @@ SP_INLINE HitInfo sp_closest_hit(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float t
           best.triangle = i;
           best_scene = SP_TRIANGLE_SCENE_INDEX(i);
         }
-      }
-    } else {
-      uint left = node_first;
-      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), best.t);
-      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), best.t);
-      if (t_left != SP_FAR || t_right != SP_FAR) {
-        // Enter the nearer child reached; the farther, if reached too,
-        // waits on the stack.
-        bool enter_left = sp_enter_left(t_left, t_right);
-        if (t_left != SP_FAR && t_right != SP_FAR) {
-          stack[stack_size] = enter_left ? left + 1u : left;
-          stack_entry[stack_size] = enter_left ? t_right : t_left;
-          stack_size += 1u;
-        }
-        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-        continue;
       }
     }
     // Pop, skipping nodes that a closer hit has since ruled out: the box
@@ -278,26 +313,23 @@ SP_INLINE bool sp_segment_blocked(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float 
   uint packets = 0u;
   if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), tmax) == SP_FAR) return false;
   for (;;) {
-    if (node_count > 0u) {
+    bool at_leaf = true;
+    while (node_count == 0u) {
+      SpDescent down = sp_descend(SP_NODE_ARGS q, node_first, tmax);
+      if (down.reached == 0u) {
+        at_leaf = false;
+        break;
+      }
+      if (down.pushes != 0u) stack[stack_size++] = down.waiting;
+      node_count = down.node_count;
+      node_first = down.node_first;
+    }
+    if (at_leaf) {
       packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) return true;
       for (uint i = node_first; i < node_first + node_count; ++i) {
         float t = sp_intersect_triangle(q, SP_TRIANGLE_V0(i), SP_TRIANGLE_V1(i), SP_TRIANGLE_V2(i));
         if (t < SP_FAR && t > q.tmin && t <= q.tmax) return true;
-      }
-    } else {
-      uint left = node_first;
-      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), tmax);
-      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), tmax);
-      if (t_left != SP_FAR || t_right != SP_FAR) {
-        bool enter_left = sp_enter_left(t_left, t_right);
-        if (t_left != SP_FAR && t_right != SP_FAR) {
-          stack[stack_size] = enter_left ? left + 1u : left;
-          stack_size += 1u;
-        }
-        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-        continue;
       }
     }
     if (stack_size == 0u) break;
@@ -379,7 +411,23 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
   if (sp_intersect_box(q, SP_NODE_MIN(0u), SP_NODE_MAX(0u), tmax) == SP_FAR) return;
 
   for (;;) {
-    if (node_count > 0u) {
+    bool at_leaf = true;
+    while (node_count == 0u) {
+      float limit = sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax);
+      SpDescent down = sp_descend(SP_NODE_ARGS q, node_first, limit);
+      if (down.reached == 0u) {
+        at_leaf = false;
+        break;
+      }
+      if (down.pushes != 0u) {
+        stack[stack_size] = down.waiting;
+        stack_entry[stack_size] = down.waiting_entry;
+        stack_size += 1u;
+      }
+      node_count = down.node_count;
+      node_first = down.node_first;
+    }
+    if (at_leaf) {
       packets += SP_LEAF_PACKETS(node_count);
       if (packets > SP_MAX_CAST_PACKETS) {
         list.cut_short = 1u;
@@ -389,22 +437,6 @@ SP_INLINE void sp_nearest_hits(SP_BVH_ARGS_DECL vec3 origin, vec3 dir, float tmi
         float t = sp_intersect_triangle(q, SP_TRIANGLE_V0(i), SP_TRIANGLE_V1(i), SP_TRIANGLE_V2(i));
         if (t < SP_FAR && t > q.tmin && t <= q.tmax)
           sp_hit_list_offer(list, t, i, SP_TRIANGLE_SOLID(i) * 4u + sp_crossing(SP_TRIANGLE_NORMAL(i), q.dir));
-      }
-    } else {
-      uint left = node_first;
-      float limit = sp_hit_list_limit(list.count, list.t[SP_MATTER_MAX_HITS - 1u], tmax);
-      float t_left = sp_intersect_box(q, SP_NODE_MIN(left), SP_NODE_MAX(left), limit);
-      float t_right = sp_intersect_box(q, SP_NODE_MIN(left + 1u), SP_NODE_MAX(left + 1u), limit);
-      if (t_left != SP_FAR || t_right != SP_FAR) {
-        bool enter_left = sp_enter_left(t_left, t_right);
-        if (t_left != SP_FAR && t_right != SP_FAR) {
-          stack[stack_size] = enter_left ? left + 1u : left;
-          stack_entry[stack_size] = enter_left ? t_right : t_left;
-          stack_size += 1u;
-        }
-        node_count = enter_left ? SP_NODE_COUNT(left) : SP_NODE_COUNT(left + 1u);
-        node_first = enter_left ? SP_NODE_FIRST(left) : SP_NODE_FIRST(left + 1u);
-        continue;
       }
     }
     bool found = false;
