@@ -122,7 +122,8 @@ void main() {
     control.queues[queue_out] = sp_queue_args(active_rays, waiting, kGroupWidth);
     control.queues[push.queue_in] = sp_queue_args(0u, 0u, kGroupWidth);
     // The passes after the wavefront, for the step so far: the casts to the
-    // listener (at least one workgroup: its last plans the admission) and
+    // listener (at least one workgroup: its last plans the admission; at
+    // most kConnectGroupsMax, whose lanes then take several spots each) and
     // the admission over the capture list.
     uint connect_groups = sp_group_count(atomicAdd(control.connect_count, 0u), kGroupWidth);
     control.connect_group_count_x = clamp(connect_groups, 1u, kConnectGroupsMax);
