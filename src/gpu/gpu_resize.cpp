@@ -46,7 +46,7 @@ GpuResize::GpuResize(vk::Context& context, const GpuResources& resources, const 
     edge_count_ = bvh.edges.size();
   }
   diffraction_ = config.diffraction.enabled;
-  if (diffraction_ != resources.resolve_diffracts) resolve_ = make_resolve_kernel(context, resources, diffraction_);
+  if (diffraction_ != resources.resolve_diffracts()) resolve_ = make_resolve_kernel(context, resources, diffraction_);
 }
 
 std::uint32_t GpuResize::kept_spots(std::uint32_t filled) const { return std::min(filled, sizes_.ring_capacity); }
@@ -102,9 +102,9 @@ void GpuResize::commit(vk::Context& context, GpuResources& resources, shader::Co
     resources.edge_count = edge_count_;
     resources.bindings.bind(context, SP_BINDING_EDGES, resources.edges);
   }
-  if (diffraction_ != resources.resolve_diffracts) {
+  if (diffraction_ != resources.resolve_diffracts()) {
     resources.kernels.resolve = std::move(resolve_);  // the device is done with the old one
-    resources.resolve_diffracts = diffraction_;
+    resources.kernel_specialization[SP_SPEC_DIFFRACTION] = diffraction_ ? VK_TRUE : VK_FALSE;
   }
   resources.max_rays = sizes_.max_rays;
   resources.iterations = sizes_.iterations;

@@ -283,7 +283,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
                            inline_admission_max(context),
                            bvh_texels ? VK_TRUE : VK_FALSE,
                            connect_groups_max(context),
-                           VK_TRUE};
+                           world.config.diffraction.enabled ? VK_TRUE : VK_FALSE};
   auto kernel = [&](std::span<const std::uint32_t> spirv, const char* name) {
     return vk::ComputePipeline(context, spirv, bindings.layout(), sizeof(shader::WavefrontPush), name,
                                kernel_specialization);
@@ -291,8 +291,7 @@ GpuResources::GpuResources(vk::Context& context, const World& world, std::uint32
   kernels.emit = kernel(sp_spirv_emit_comp, "emit");
   kernels.trace = kernel(sp_spirv_trace_comp, "trace");
   kernels.trace_matter = kernel(sp_spirv_trace_matter_comp, "trace_matter");
-  kernels.resolve = make_resolve_kernel(context, *this, world.config.diffraction.enabled);
-  resolve_diffracts = world.config.diffraction.enabled;
+  kernels.resolve = make_resolve_kernel(context, *this, resolve_diffracts());
   kernels.connect = kernel(sp_spirv_connect_comp, "connect");
   kernels.admit = kernel(sp_spirv_admit_comp, "admit");
 }

@@ -158,12 +158,13 @@ struct GpuResources {
   vk::StorageBindings bindings;
   Kernels kernels;
   // The kernels' specialization constants (SP_SPEC_*), as the device and
-  // the first config chose them; resolve's SP_SPEC_DIFFRACTION aside.
+  // the config chose them. Only resolve reads SP_SPEC_DIFFRACTION, which
+  // set_config changes with the resolve kernel (make_resolve_kernel).
   std::array<std::uint32_t, kKernelSpecializationCount> kernel_specialization{};
-  // Whether kernels.resolve was built with diffraction's code
-  // (make_resolve_kernel): the config's diffraction.enabled, which every
-  // step's params must match.
-  bool resolve_diffracts = false;
+
+  // Whether kernels.resolve was built with diffraction's code: the config's
+  // diffraction.enabled, which every step's params must match.
+  bool resolve_diffracts() const { return kernel_specialization[SP_SPEC_DIFFRACTION] != VK_FALSE; }
 };
 
 // resources.kernels.resolve's like, with diffraction's code where

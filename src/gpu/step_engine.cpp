@@ -150,7 +150,7 @@ void StepEngine::record_step_input(VkCommandBuffer cmd, const World& world, std:
     throw std::logic_error("the step plays more sources than the step input holds");
   shader::StepInput input{};
   input.params = make_sim_params(world.config, step, plan_.listener);
-  if ((input.params.diffraction != 0u) != resources_.resolve_diffracts)
+  if ((input.params.diffraction != 0u) != resources_.resolve_diffracts())
     throw std::logic_error("the step's diffraction differs from the one the resolve kernel was built for");
   input.total_rays = plan_.total_rays;
   input.source_count = static_cast<std::uint32_t>(plan_.sources.size());
