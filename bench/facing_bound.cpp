@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -85,7 +84,7 @@ struct FacingFrame {
     const glm::dvec3 level(to_source.x, 0.0, to_source.z);
     forward = glm::length(level) > 0.0 ? glm::normalize(level) : glm::dvec3(0.0, 0.0, -1.0);
     right = glm::dvec3(-forward.z, 0.0, forward.x);
-    tan_h = std::tan(hfov_deg * 0.5 * std::numbers::pi / 180.0);
+    tan_h = std::tan(glm::radians(hfov_deg * 0.5));
     tan_v = tan_h / aspect;
   }
 
@@ -102,7 +101,7 @@ struct FacingFrame {
   double error_deg(glm::dvec2 image) const {
     const glm::dvec3 way = forward + image.x * tan_h * right + image.y * tan_v * up;
     const double c = glm::dot(glm::normalize(way), glm::normalize(to_source));
-    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    return glm::degrees(std::acos(std::clamp(c, -1.0, 1.0)));
   }
 
   // Where the source itself would be drawn (it may be out of frame).
